@@ -1,0 +1,113 @@
+//! Errors: user input problems (exit 1 in the CLI) kept apart from internal ones ("please report").
+//!
+//! Every input error names the file, the element id where there is one, the problem, and a hint
+//! where one helps, so that the CLI can print it as one line.
+
+use std::fmt;
+
+/// The result type of crmorph.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in crmorph.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The input is unusable: a bad file, bad control geometry, or a morph that cannot be made
+    /// from it. The fields say where and why.
+    #[error("{0}")]
+    Input(InputError),
+    /// A bug in crmorph, not in the input.
+    #[error("internal error: {0} (please report this with the input files)")]
+    Internal(String),
+}
+
+/// A problem with the user's input, located as precisely as the stage that found it can.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputError {
+    /// The file the problem is in (or the pair of files, for problems between them).
+    pub file: String,
+    /// The element id concerned (`boundary`, `feature-eye`, …), if any.
+    pub element: Option<String>,
+    /// What is wrong, in a short phrase without a trailing period.
+    pub problem: String,
+    /// How to fix it, if there is an obvious way.
+    pub hint: Option<String>,
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(el) = &self.element {
+            write!(f, ": element '{el}'")?;
+        }
+        write!(f, ": {}", self.problem)?;
+        if let Some(h) = &self.hint {
+            write!(f, " (hint: {h})")?;
+        }
+        Ok(())
+    }
+}
+
+impl Error {
+    /// An input error in `file` with no particular element.
+    pub fn input(file: impl Into<String>, problem: impl Into<String>) -> Self {
+        Error::Input(InputError {
+            file: file.into(),
+            element: None,
+            problem: problem.into(),
+            hint: None,
+        })
+    }
+
+    /// An input error in `file` at the element with id `element`.
+    pub fn at(file: impl Into<String>, element: impl Into<String>, problem: impl Into<String>) -> Self {
+        Error::Input(InputError {
+            file: file.into(),
+            element: Some(element.into()),
+            problem: problem.into(),
+            hint: None,
+        })
+    }
+
+    /// Adds a hint to an input error (no effect on internal errors).
+    pub fn with_hint(mut self, hint: impl Into<String>) -> Self {
+        if let Error::Input(e) = &mut self {
+            e.hint = Some(hint.into());
+        }
+        self
+    }
+
+    /// Replaces the file of an input error; stages that do not know the file name use a
+    /// placeholder that the caller fills in with this.
+    pub fn in_file(mut self, file: impl Into<String>) -> Self {
+        if let Error::Input(e) = &mut self {
+            e.file = file.into();
+        }
+        self
+    }
+
+    /// An internal error: a broken invariant of crmorph itself.
+    pub fn internal(msg: impl Into<String>) -> Self {
+        Error::Internal(msg.into())
+    }
+
+    /// True for input errors (the CLI exits with status 1 for these).
+    pub fn is_input(&self) -> bool {
+        matches!(self, Error::Input(_))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn input_error_is_one_line_with_file_element_and_hint() {
+        let e = Error::at("a.svg", "boundary", "is not closed").with_hint("close the path with 'z'");
+        let s = e.to_string();
+        assert_eq!(s, "a.svg: element 'boundary': is not closed (hint: close the path with 'z')");
+        assert!(!s.contains('\n'));
+        assert!(e.is_input());
+        assert!(!Error::internal("x").is_input());
+    }
+}

@@ -1,0 +1,201 @@
+//! Planar geometry shared by every stage: points, polylines, exact orientation predicates,
+//! intersection and containment tests.
+//!
+//! Coordinates are SVG user units (y pointing down on screen). "Counter-clockwise" and "positive
+//! orientation" mean a positive [`orient2d`] / shoelace area in those coordinates, which looks
+//! clockwise on screen; every stage uses this one convention.
+
+use glam::DVec2;
+
+/// A point or vector in the plane, in f64.
+pub type Point = DVec2;
+
+/// Twice the signed area of triangle `abc`, computed with Shewchuk's adaptive exact predicate:
+/// positive for counter-clockwise (see module docs), zero exactly when collinear.
+pub fn orient2d(a: Point, b: Point, c: Point) -> f64 {
+    robust::orient2d(
+        robust::Coord { x: a.x, y: a.y },
+        robust::Coord { x: b.x, y: b.y },
+        robust::Coord { x: c.x, y: c.y },
+    )
+}
+
+/// Signed area of triangle `abc` (plain floating point, positive counter-clockwise).
+pub fn triangle_area(a: Point, b: Point, c: Point) -> f64 {
+    0.5 * (b - a).perp_dot(c - a)
+}
+
+/// Signed area of a closed polygon by the shoelace formula (positive counter-clockwise).
+pub fn polygon_area(points: &[Point]) -> f64 {
+    let n = points.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let mut s = 0.0;
+    for i in 0..n {
+        s += points[i].perp_dot(points[(i + 1) % n]);
+    }
+    0.5 * s
+}
+
+/// Vertex mean of a point set (the "barycenter" of a curve in the barycenter-based shape model,
+/// §5).
+pub fn centroid(points: &[Point]) -> Point {
+    if points.is_empty() {
+        return Point::ZERO;
+    }
+    points.iter().copied().sum::<Point>() / points.len() as f64
+}
+
+/// Total length of a polyline, including the closing edge when `closed`.
+pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
+    let mut len: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    if closed && points.len() > 1 {
+        len += points[points.len() - 1].distance(points[0]);
+    }
+    len
+}
+
+/// Axis-aligned bounding box `(min, max)` of a point set, or `None` when it is empty.
+pub fn bounding_box(points: impl IntoIterator<Item = Point>) -> Option<(Point, Point)> {
+    let mut it = points.into_iter();
+    let first = it.next()?;
+    Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+}
+
+/// Whether closed segments `ab` and `cd` intersect (touching counts), by exact predicates.
+pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let d1 = orient2d(c, d, a);
+    let d2 = orient2d(c, d, b);
+    let d3 = orient2d(a, b, c);
+    let d4 = orient2d(a, b, d);
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let on = |p: Point, q: Point, r: Point| {
+        r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
+    };
+    (d1 == 0.0 && on(c, d, a))
+        || (d2 == 0.0 && on(c, d, b))
+        || (d3 == 0.0 && on(a, b, c))
+        || (d4 == 0.0 && on(a, b, d))
+}
+
+/// Whether `p` lies inside the closed polygon `poly` (even-odd rule; points exactly on an edge
+/// may go either way).
+pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    let mut j = n.wrapping_sub(1);
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[j]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+        j = i;
+    }
+    inside
+}
+
+/// Distance from `p` to segment `ab`, and the parameter in [0, 1] of the closest point.
+pub fn point_segment_distance(p: Point, a: Point, b: Point) -> (f64, f64) {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let u = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    (p.distance(a + ab * u), u)
+}
+
+/// Barycentric coordinates of `p` in triangle `abc` (they sum to one; all non-negative when `p`
+/// is inside). Returns `None` for a degenerate triangle.
+pub fn barycentric(p: Point, a: Point, b: Point, c: Point) -> Option<[f64; 3]> {
+    let d = (b - a).perp_dot(c - a);
+    if d == 0.0 || !d.is_finite() {
+        return None;
+    }
+    let l1 = (b - p).perp_dot(c - p) / d;
+    let l2 = (c - p).perp_dot(a - p) / d;
+    Some([l1, l2, 1.0 - l1 - l2])
+}
+
+/// Whether any two non-adjacent edges of a polyline intersect (a closed polyline's first and
+/// last edges are adjacent). Returns the indices of the first offending edge pair. O(n²) in the
+/// worst case but pruned by bounding boxes; curves here have at most a few thousand edges.
+pub fn polyline_self_intersection(points: &[Point], closed: bool) -> Option<(usize, usize)> {
+    let n = points.len();
+    let m = if closed { n } else { n.saturating_sub(1) };
+    let edge = |i: usize| (points[i], points[(i + 1) % n]);
+    for i in 0..m {
+        let (a, b) = edge(i);
+        let (lo, hi) = (a.min(b), a.max(b));
+        for j in (i + 2)..m {
+            if closed && i == 0 && j == m - 1 {
+                continue;
+            }
+            let (c, d) = edge(j);
+            if c.max(d).x < lo.x || c.min(d).x > hi.x || c.max(d).y < lo.y || c.min(d).y > hi.y {
+                continue;
+            }
+            if segments_intersect(a, b, c, d) {
+                return Some((i, j));
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    #[test]
+    fn orientation_and_areas() {
+        assert!(orient2d(p(0., 0.), p(1., 0.), p(0., 1.)) > 0.0);
+        assert_eq!(orient2d(p(0., 0.), p(1., 1.), p(2., 2.)), 0.0);
+        let sq = [p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.)];
+        assert_eq!(polygon_area(&sq), 4.0);
+        assert_eq!(centroid(&sq), p(1., 1.));
+        assert_eq!(polyline_length(&sq, true), 8.0);
+        assert_eq!(polyline_length(&sq, false), 6.0);
+        assert!(point_in_polygon(p(1., 1.), &sq));
+        assert!(!point_in_polygon(p(3., 1.), &sq));
+    }
+
+    #[test]
+    fn segment_intersection_cases() {
+        assert!(segments_intersect(p(0., 0.), p(2., 2.), p(0., 2.), p(2., 0.)));
+        assert!(!segments_intersect(p(0., 0.), p(1., 0.), p(0., 1.), p(1., 1.)));
+        // touching at an end point counts
+        assert!(segments_intersect(p(0., 0.), p(1., 0.), p(1., 0.), p(1., 1.)));
+        // collinear overlap
+        assert!(segments_intersect(p(0., 0.), p(2., 0.), p(1., 0.), p(3., 0.)));
+        assert!(!segments_intersect(p(0., 0.), p(1., 0.), p(2., 0.), p(3., 0.)));
+    }
+
+    #[test]
+    fn self_intersection_of_a_bow_tie() {
+        let bow = [p(0., 0.), p(2., 2.), p(2., 0.), p(0., 2.)];
+        assert!(polyline_self_intersection(&bow, true).is_some());
+        let sq = [p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.)];
+        assert!(polyline_self_intersection(&sq, true).is_none());
+        assert!(polyline_self_intersection(&sq, false).is_none());
+    }
+
+    #[test]
+    fn barycentric_reproduces_the_point() {
+        let (a, b, c) = (p(0., 0.), p(4., 0.), p(0., 3.));
+        let q = p(1., 1.);
+        let l = barycentric(q, a, b, c).unwrap();
+        let r = a * l[0] + b * l[1] + c * l[2];
+        assert!((r - q).length() < 1e-12);
+        assert!(barycentric(q, a, a, c).is_none());
+    }
+}

@@ -1,0 +1,45 @@
+//! # crmorph — controllable rigid morphing of SVG drawings
+//!
+//! crmorph implements CR-Morph (`shared/paper/cr-morph.txt`): it morphs one SVG drawing into
+//! another rigidly, with interior features kept aligned, with motion that a skeleton can steer.
+//!
+//! ## The pipeline
+//!
+//! ```text
+//! SVG ─usvg/quick-xml─▶ Drawing { artwork, controls }                      drawing
+//! controls ─lyon flatten─▶ polylines ─correspondence─▶ curve pairs (§3)   correspondence
+//! curve pairs ─spade CDT of the source─▶ source mesh                       triangulation
+//!   ─composite harmonic mapping through BSM intermediates (§5)─▶ target    mapping
+//! meshes ─disc-based rigid interpolation (§4.1, eq.1)─▶ vertices at any t  rigid
+//! ```
+//!
+//! 1. [`drawing`] reads a file: the control geometry found by id (boundary, `feature-NAME`,
+//!    `anchor-NAME`, skeleton), flattened at a tolerance relative to the drawing's size
+//!    ([`tolerance`]).
+//! 2. [`correspondence`] gives each source curve and its target twin the same number of
+//!    corresponding vertices, aligning salient points.
+//! 3. [`triangulation`] builds a constrained Delaunay triangulation of the source with every curve
+//!    as a constraint, refined for quality without splitting the curves.
+//! 4. [`mapping`] carries it to the target through a sequence of intermediate curves from the
+//!    barycenter-based shape model, one harmonic map per step, with no triangle flipped.
+//! 5. [`rigid`] interpolates the two meshes: local disc-to-disc rotations and scales, made
+//!    globally consistent, assembled by one factored least-squares solve per frame.
+//!
+//! [`compatible`] runs stages 1–4 for a pair of drawings; [`mesh`] holds the result and its
+//! [`mesh::sanity_check`]; [`quality`] measures frames.
+
+pub mod compatible;
+pub mod correspondence;
+pub mod drawing;
+pub mod error;
+pub mod geometry;
+pub mod mapping;
+pub mod mesh;
+pub mod quality;
+pub mod rigid;
+pub mod tolerance;
+pub mod triangulation;
+
+pub use error::{Error, InputError, Result};
+pub use geometry::Point;
+pub use mesh::{CompatibleMeshes, CurveKind, MeshCurve};

@@ -1,0 +1,1 @@
+//! Composite harmonic mapping of the source triangulation onto the target (§5).

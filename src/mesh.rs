@@ -1,0 +1,206 @@
+//! Compatible triangulations: one connectivity, two vertex sets — and the sanity checker every
+//! test and fuzzer uses.
+//!
+//! This is the data the compatible triangulation stage (§5) produces and the rigid interpolation
+//! (§4.1) consumes. Triangles are counter-clockwise (positive [`orient2d`]) in the mesh they were
+//! built in (the source, or the target with `--from target`).
+
+use crate::geometry::{orient2d, Point};
+use serde::{Deserialize, Serialize};
+
+/// What kind of control curve a mesh curve comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CurveKind {
+    /// The outline of the shape (`boundary`, or the viewBox rectangle).
+    Boundary,
+    /// An interior feature curve (`feature-NAME`).
+    Feature,
+}
+
+/// A boundary or feature curve as a chain of mesh vertices, in the same order in both meshes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshCurve {
+    /// `boundary` or `feature-NAME` (the element id as written in the input).
+    pub name: String,
+    /// Boundary or feature.
+    pub kind: CurveKind,
+    /// Whether the last vertex connects back to the first.
+    pub closed: bool,
+    /// Mesh vertex indices along the curve.
+    pub vertices: Vec<u32>,
+}
+
+/// Two triangulations with one connectivity: vertex `i` of `source` corresponds to vertex `i` of
+/// `target`, and every curve's vertices land on their twins.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CompatibleMeshes {
+    /// Shared connectivity, counter-clockwise in the mesh that was triangulated.
+    pub triangles: Vec<[u32; 3]>,
+    /// Vertex positions in the source drawing's user space.
+    pub source: Vec<Point>,
+    /// Vertex positions in the target drawing's user space.
+    pub target: Vec<Point>,
+    /// Boundary first, then features in name order.
+    pub curves: Vec<MeshCurve>,
+}
+
+/// Counts found by [`sanity_check`]; a healthy pair of meshes has every count zero.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SanityReport {
+    /// Triangles referring to a vertex index out of range or repeating a vertex.
+    pub bad_indices: usize,
+    /// Vertices with a non-finite coordinate (either mesh).
+    pub non_finite: usize,
+    /// Source triangles that are not strictly counter-clockwise.
+    pub inverted_source: usize,
+    /// Target triangles whose orientation is not strictly counter-clockwise.
+    pub inverted_target: usize,
+    /// Curve vertices whose target position is farther than the tolerance from the expected
+    /// twin (only counted when twins are given).
+    pub curve_mismatches: usize,
+    /// Vertices used by no triangle.
+    pub unused_vertices: usize,
+}
+
+impl SanityReport {
+    /// True when nothing is wrong.
+    pub fn is_ok(&self) -> bool {
+        *self == SanityReport::default()
+    }
+}
+
+/// Number of triangles of `triangles` that are not strictly positively oriented in `points`
+/// (exact predicate). This is the "inverted triangles" quality measure.
+pub fn count_inverted(triangles: &[[u32; 3]], points: &[Point]) -> usize {
+    triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            orient2d(a, b, c) <= 0.0
+        })
+        .count()
+}
+
+/// Checks shared connectivity, index validity, finiteness, orientation in both meshes, unused
+/// vertices, and — when `twins` is given as `(curve index, target polyline)` pairs — that every
+/// curve vertex lies within `tol` of its twin.
+pub fn sanity_check(m: &CompatibleMeshes, twins: Option<&[Vec<Point>]>, tol: f64) -> SanityReport {
+    let mut r = SanityReport::default();
+    let n = m.source.len();
+    if m.target.len() != n {
+        r.bad_indices += n.abs_diff(m.target.len());
+    }
+    let mut used = vec![false; n];
+    let mut ok_tris = Vec::with_capacity(m.triangles.len());
+    for t in &m.triangles {
+        let [a, b, c] = *t;
+        if (a as usize) >= n || (b as usize) >= n || (c as usize) >= n || a == b || b == c || a == c {
+            r.bad_indices += 1;
+            continue;
+        }
+        for i in t {
+            used[*i as usize] = true;
+        }
+        ok_tris.push(*t);
+    }
+    if m.target.len() == n {
+        r.inverted_source = count_inverted(&ok_tris, &m.source);
+        r.inverted_target = count_inverted(&ok_tris, &m.target);
+    }
+    r.non_finite = m
+        .source
+        .iter()
+        .chain(m.target.iter())
+        .filter(|p| !p.is_finite())
+        .count();
+    r.unused_vertices = used.iter().filter(|u| !**u).count();
+    if let Some(twins) = twins {
+        for (curve, twin) in m.curves.iter().zip(twins) {
+            if twin.len() != curve.vertices.len() {
+                r.curve_mismatches += curve.vertices.len().max(twin.len());
+                continue;
+            }
+            for (&v, &q) in curve.vertices.iter().zip(twin) {
+                let ok = m.target.get(v as usize).is_some_and(|p| p.distance(q) <= tol);
+                if !ok {
+                    r.curve_mismatches += 1;
+                }
+            }
+        }
+    }
+    r
+}
+
+/// Undirected edges of a triangle list, each once as `(lo, hi)`, sorted.
+pub fn edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let mut e: Vec<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    e
+}
+
+/// One-ring neighbour lists (the "discs" of §4.1 for a triangulation), each sorted ascending.
+pub fn one_rings(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
+    let mut rings = vec![Vec::new(); vertex_count];
+    for (a, b) in edges(triangles) {
+        rings[a as usize].push(b);
+        rings[b as usize].push(a);
+    }
+    for r in &mut rings {
+        r.sort_unstable();
+    }
+    rings
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> CompatibleMeshes {
+        let s = vec![
+            Point::new(0., 0.),
+            Point::new(1., 0.),
+            Point::new(1., 1.),
+            Point::new(0., 1.),
+        ];
+        CompatibleMeshes {
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            target: s.iter().map(|p| *p * 2.0).collect(),
+            source: s,
+            curves: vec![MeshCurve {
+                name: "boundary".into(),
+                kind: CurveKind::Boundary,
+                closed: true,
+                vertices: vec![0, 1, 2, 3],
+            }],
+        }
+    }
+
+    #[test]
+    fn healthy_meshes_pass_and_counts_are_specific() {
+        let mut m = square();
+        let twins = vec![m.target.clone()];
+        assert!(sanity_check(&m, Some(&twins), 1e-12).is_ok());
+        m.target.swap(0, 2); // folds both triangles
+        let r = sanity_check(&m, Some(&twins), 1e-12);
+        assert_eq!(r.inverted_target, 2);
+        assert_eq!(r.curve_mismatches, 2);
+        assert_eq!(r.inverted_source, 0);
+        m.triangles.push([0, 0, 1]);
+        assert_eq!(sanity_check(&m, None, 0.0).bad_indices, 1);
+    }
+
+    #[test]
+    fn edges_and_rings() {
+        let m = square();
+        assert_eq!(edges(&m.triangles), vec![(0, 1), (0, 2), (0, 3), (1, 2), (2, 3)]);
+        let r = one_rings(&m.triangles, 4);
+        assert_eq!(r[0], vec![1, 2, 3]);
+        assert_eq!(r[1], vec![0, 2]);
+    }
+}

@@ -1,0 +1,1 @@
+//! Quality measures of interpolated frames: inverted triangles, distortion, area.

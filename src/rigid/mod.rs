@@ -1,0 +1,1 @@
+//! Disc-based rigidity-preserving interpolation with globally consistent rotation (§4.1).

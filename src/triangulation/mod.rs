@@ -1,0 +1,1 @@
+//! Constrained Delaunay triangulation of the source shape (§5) with spade.
