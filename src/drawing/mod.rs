@@ -89,3 +89,190 @@ impl Default for ControlIds {
         }
     }
 }
+
+mod controls;
+mod flatten;
+mod shapes;
+mod xml;
+
+use crate::error::{Error, Result};
+use crate::tolerance::Tolerances;
+
+/// Options for reading a drawing.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct ReadOptions {
+    /// Id conventions. Default: [`ControlIds::default`].
+    pub ids: ControlIds,
+    /// Vertex density multiplier (2.0 = twice as many vertices per unit length). Default: 1.0.
+    pub density: f64,
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions {
+            ids: ControlIds::default(),
+            density: 1.0,
+        }
+    }
+}
+
+/// One SVG drawing: its control geometry, and its source text for the artwork stage.
+#[derive(Debug, Clone)]
+pub struct Drawing {
+    /// The file name used in error messages.
+    pub file: String,
+    /// The control geometry, in the root's user space.
+    pub controls: Controls,
+    /// Tolerances relative to this drawing's size.
+    pub tolerances: Tolerances,
+    /// The root's viewBox as `(min, max)` corners (from `viewBox`, else `width`/`height`).
+    pub view_box: Option<(Point, Point)>,
+    /// The SVG source text.
+    pub svg: String,
+}
+
+impl Drawing {
+    /// Reads and validates a drawing from SVG text; `file` names it in error messages.
+    pub fn from_str(file: &str, text: &str, opts: &ReadOptions) -> Result<Self> {
+        let root = xml::parse(text).map_err(|p| Error::input(file, p.to_string()))?;
+        let (controls, tolerances, view_box) =
+            controls::read_controls(&root, file, &opts.ids, opts.density)?;
+        Ok(Drawing {
+            file: file.to_string(),
+            controls,
+            tolerances,
+            view_box,
+            svg: text.to_string(),
+        })
+    }
+
+    /// Reads and validates a drawing from a file.
+    pub fn open(path: &std::path::Path, opts: &ReadOptions) -> Result<Self> {
+        let file = path.display().to_string();
+        let bytes = std::fs::read(path)
+            .map_err(|e| Error::input(&file, format!("cannot read the file: {e}")))?;
+        let text = String::from_utf8(bytes)
+            .map_err(|_| Error::input(&file, "not an SVG file: not UTF-8 text"))?;
+        Self::from_str(&file, &text, opts)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+      <path id="boundary" d="M10 10 H90 V90 H10 Z" fill="red"/>
+      <g id="controls" style="display:none" transform="translate(5 0)">
+        <polyline id="feature-line" points="30,50 60,50"/>
+        <circle id="feature-eye" cx="45" cy="30" r="5"/>
+        <circle id="anchor-top" cx="50" cy="10" r="1"/>
+        <polyline id="skeleton-arm" points="30,70 50,70 70,70"/>
+      </g></svg>"#;
+
+    fn read(text: &str) -> Result<Drawing> {
+        Drawing::from_str("t.svg", text, &ReadOptions::default())
+    }
+
+    #[test]
+    fn reads_controls_with_transforms_and_guides() {
+        let d = read(SQUARE).unwrap();
+        let c = &d.controls;
+        assert_eq!(c.boundary.points.len(), 4);
+        assert!(c.boundary.closed);
+        assert!(!c.boundary_from_view_box);
+        assert_eq!(c.features.len(), 2);
+        assert_eq!(c.features[0].name, "eye");
+        assert!(c.features[0].closed);
+        assert_eq!(c.features[1].name, "line");
+        assert!(!c.features[1].closed);
+        assert_eq!(
+            c.features[1].points,
+            vec![Point::new(35.0, 50.0), Point::new(65.0, 50.0)]
+        );
+        assert_eq!(c.anchors[0].point, Point::new(55.0, 10.0));
+        assert_eq!(c.skeleton[0].points.len(), 3);
+        assert!((d.tolerances.diagonal - 80.0 * 2f64.sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn viewbox_is_the_boundary_in_image_mode() {
+        let d = read(r#"<svg viewBox="0 0 200 100"><rect width="10" height="10"/></svg>"#).unwrap();
+        assert!(d.controls.boundary_from_view_box);
+        assert_eq!(
+            crate::geometry::polygon_area(&d.controls.boundary.points),
+            20000.0
+        );
+    }
+
+    fn err(text: &str) -> String {
+        read(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn bad_inputs_give_located_one_line_errors() {
+        let cases = [
+            (
+                r#"<svg><path id="boundary" d="M0 0 L10 0 L10 10"/></svg>"#,
+                "element 'boundary': is not closed",
+            ),
+            (
+                r#"<svg><path id="boundary" d="M0 0 L10 10 L10 0 L0 10 Z"/></svg>"#,
+                "crosses itself",
+            ),
+            (
+                r#"<svg><path id="boundary" d="M0 0 L10 0 L20 0 Z"/></svg>"#,
+                "encloses no area",
+            ),
+            (
+                r#"<svg><path id="boundary" d="M0 0 L1e300 0 L0 10 Z"/></svg>"#,
+                "too large",
+            ),
+            (
+                r#"<svg><rect id="boundary" width="10" height="10"/><line id="feature-a" x1="5" y1="5" x2="50" y2="5"/></svg>"#,
+                "element 'feature-a': leaves 'boundary'",
+            ),
+            (
+                r#"<svg><rect id="boundary" width="10" height="10"/><line id="feature-a" x1="2" y1="5" x2="8" y2="5"/><line id="feature-b" x1="5" y1="2" x2="5" y2="8"/></svg>"#,
+                "element 'feature-b': crosses 'feature-a'",
+            ),
+            (
+                r#"<svg><rect id="boundary" width="10" height="10"/><line id="feature-a" x1="20" y1="5" x2="30" y2="5"/></svg>"#,
+                "lies outside",
+            ),
+            (
+                r#"<svg><rect id="boundary" width="10" height="10"/><rect id="boundary" width="5" height="5"/></svg>"#,
+                "more than one element",
+            ),
+            (
+                r#"<svg><path id="boundary" d="M0 0 L10 0 L0 10 Z M20 20 L30 20 L20 30 Z"/></svg>"#,
+                "2 subpaths",
+            ),
+            (
+                r#"<svg><rect id="boundary" width="10" height="10"/><line id="feature-a" x1="5" y1="5" x2="5" y2="5"/></svg>"#,
+                "no length",
+            ),
+            (
+                r#"<svg><text id="feature-a">hi</text><rect id="boundary" width="10" height="10"/></svg>"#,
+                "cannot be control geometry",
+            ),
+            (
+                r#"<svg><g></g></svg>"#,
+                "no 'boundary' element and no viewBox",
+            ),
+            ("", "empty"),
+            ("<svg><g>", "truncated"),
+            ("just text", "not an SVG"),
+        ];
+        for (svg, expected) in cases {
+            let e = err(svg);
+            assert!(
+                e.contains(expected),
+                "{svg}\n  gave: {e}\n  expected: {expected}"
+            );
+            assert!(e.starts_with("t.svg"), "{e}");
+            assert!(!e.contains('\n'));
+        }
+    }
+}
