@@ -1,1 +1,87 @@
-//! Compatible triangulation of a source and a target drawing: stages 1–4 of the pipeline.
+//! Compatible triangulation of a source and a target drawing: stages 2–4 of the pipeline.
+//!
+//! [`build`] runs the vertex correspondence (§3), the constrained Delaunay triangulation of the
+//! source (or of the target with [`MorphOptions::from_target`], Fig.12) and the composite harmonic
+//! mapping through the barycenter-based shape model (§5), and returns meshes that share
+//! connectivity, with every curve vertex on its twin.
+
+use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
+use crate::drawing::Drawing;
+use crate::error::{Error, Result};
+use crate::mapping::{composite_map, MappingOptions, MappingStats};
+use crate::mesh::CompatibleMeshes;
+use crate::tolerance::Tolerances;
+use crate::triangulation::triangulate;
+
+/// Options of the compatible triangulation.
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
+pub struct MorphOptions {
+    /// Triangulate the target and map it to the source instead (Fig.12). Default: false.
+    pub from_target: bool,
+    /// Vertex density multiplier for correspondence and refinement. Default: 1.0 (0 means 1.0).
+    pub density: f64,
+    /// Vertex correspondence options. Default: [`CorrespondenceOptions::default`].
+    pub correspondence: CorrespondenceOptions,
+    /// Composite mapping options. Default: [`MappingOptions::default`].
+    pub mapping: MappingOptions,
+}
+
+/// The result of [`build`]: compatible meshes and what they were made from.
+#[derive(Debug, Clone)]
+pub struct Compatible {
+    /// The two meshes with shared connectivity.
+    pub meshes: CompatibleMeshes,
+    /// The curve pairs with their vertex correspondence (boundary first, then features by name);
+    /// `meshes.curves[k]` is `pairs[k]`.
+    pub pairs: Vec<CurvePair>,
+    /// Counts from the composite mapping.
+    pub stats: MappingStats,
+    /// The tolerances used (relative to the larger of the two drawings).
+    pub tolerances: Tolerances,
+}
+
+/// Tolerances common to both drawings: relative to the larger one.
+pub fn common_tolerances(source: &Drawing, target: &Drawing, density: f64) -> Tolerances {
+    let d = source.tolerances.diagonal.max(target.tolerances.diagonal);
+    Tolerances::new(d, if density > 0.0 { density } else { 1.0 })
+}
+
+/// Replaces the `<source>` / `<target>` placeholders that stages without file names use.
+fn name_files(e: Error, source: &Drawing, target: &Drawing, from_target: bool) -> Error {
+    match e {
+        Error::Input(mut ie) => {
+            // The triangulated side is what the stages call the source.
+            let (s, t) = if from_target {
+                (&target.file, &source.file)
+            } else {
+                (&source.file, &target.file)
+            };
+            ie.file = ie.file.replace("<source>", s).replace("<target>", t);
+            Error::Input(ie)
+        }
+        other => other,
+    }
+}
+
+/// Builds compatible triangulations of two drawings (§3, §5).
+pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
+    let tol = common_tolerances(source, target, opts.density);
+    let pairs = correspond_all(
+        &source.file,
+        &source.controls,
+        &target.file,
+        &target.controls,
+        &tol,
+        &opts.correspondence,
+    )?;
+    let fix = |e| name_files(e, source, target, opts.from_target);
+    let tri = triangulate(&pairs, &tol, opts.from_target).map_err(fix)?;
+    let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;
+    Ok(Compatible {
+        meshes,
+        pairs,
+        stats,
+        tolerances: tol,
+    })
+}

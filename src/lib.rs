@@ -33,6 +33,8 @@ pub mod correspondence;
 pub mod drawing;
 pub mod error;
 pub mod geometry;
+pub mod inspect;
+pub mod json;
 pub mod mapping;
 pub mod mesh;
 pub mod quality;

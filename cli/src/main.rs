@@ -1,1 +1,79 @@
-fn main() {}
+//! `crmorph`: morph one SVG drawing into another, rigidly, with interior features aligned.
+//!
+//! Exit status: 0 on success, 1 on bad input (one line `error: …` naming the file, the element id
+//! and the problem), 2 on bad usage. Outputs are written atomically.
+
+mod commands;
+mod demo;
+mod output;
+mod progress;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use commands::{FrameArgs, InspectArgs, MorphArgs, Usage};
+use progress::Progress;
+
+/// crmorph morphs one SVG drawing into another the way an animator would: rigidly, with interior
+/// feature curves kept aligned (CR-Morph). With no command, it morphs the bundled demo into
+/// ./crmorph-demo/.
+#[derive(Debug, Parser)]
+#[command(name = "crmorph", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// Show no progress on stderr.
+    #[arg(long, short, global = true)]
+    quiet: bool,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Morph SRC into TGT; the output's extension picks the format (.json: every frame's mesh).
+    Morph(MorphArgs),
+    /// One frame at time T (.json: the mesh at T).
+    Frame(FrameArgs),
+    /// The compatible triangulations side by side (.svg) or the meshes (.json).
+    Inspect(InspectArgs),
+}
+
+fn run(cli: &Cli) -> anyhow::Result<()> {
+    let progress = Progress::new(cli.quiet);
+    let r = match &cli.command {
+        None => demo::run(std::path::Path::new("crmorph-demo"), &progress).map(|s| println!("{s}")),
+        Some(Command::Morph(a)) => commands::morph(a, &progress),
+        Some(Command::Frame(a)) => commands::frame(a, &progress),
+        Some(Command::Inspect(a)) => commands::inspect(a, &progress),
+    };
+    progress.finish();
+    r
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse(); // exits with status 2 on bad usage
+                            // A panic is a bug in crmorph: report it as one line, never as a backtrace.
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(|| run(&cli));
+    match result {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) => {
+            let one_line = format!("{e:#}").replace('\n', " ");
+            eprintln!("error: {one_line}");
+            if e.downcast_ref::<Usage>().is_some() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
+        }
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            eprintln!("error: internal error: {msg} (please report this with the input files)");
+            ExitCode::from(1)
+        }
+    }
+}

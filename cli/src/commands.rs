@@ -1,0 +1,229 @@
+//! Typed commands between clap and the library: each command is a plain struct, validated by
+//! clap, run here.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Result};
+use clap::{Args, ValueEnum};
+use crmorph::compatible::{build, Compatible, MorphOptions};
+use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
+use crmorph::rigid::{Interpolator, Method};
+
+use crate::output::{refuse_overwriting_inputs, write_atomic, Format};
+use crate::progress::Progress;
+
+/// Which drawing is triangulated and mapped onto the other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum From {
+    /// Triangulate the source, map it onto the target (default).
+    #[default]
+    Source,
+    /// Triangulate the target, map it onto the source (paper Fig.12).
+    Target,
+}
+
+/// Interpolation method (`--method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum MethodArg {
+    /// Disc-based rigidity-preserving interpolation with consistent rotations (§4.1; default).
+    #[default]
+    Disc,
+    /// Triangle-based as-rigid-as-possible interpolation (Alexa et al. 2000), for comparison.
+    Triangle,
+    /// Linear vertex interpolation, for comparison.
+    Linear,
+}
+
+impl MethodArg {
+    fn method(self) -> Method {
+        match self {
+            MethodArg::Disc => Method::Disc,
+            MethodArg::Triangle => Method::Triangle,
+            MethodArg::Linear => Method::Linear,
+        }
+    }
+}
+
+/// Inputs and control conventions shared by every command.
+#[derive(Debug, Clone, Args)]
+pub struct Inputs {
+    /// The source SVG drawing.
+    pub source: PathBuf,
+    /// The target SVG drawing.
+    pub target: PathBuf,
+    /// Output file; its extension picks the format.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Id of the boundary element.
+    #[arg(long, default_value = "boundary")]
+    pub boundary_id: String,
+    /// Id prefix of feature curves.
+    #[arg(long, default_value = "feature-")]
+    pub feature_prefix: String,
+    /// Id (and prefix) of skeleton polylines.
+    #[arg(long, default_value = "skeleton")]
+    pub skeleton_id: String,
+    /// Vertex density multiplier: 2 gives twice as many vertices per unit length.
+    #[arg(long, default_value_t = 1.0, value_parser = positive_f64)]
+    pub density: f64,
+    /// Which drawing to triangulate and map onto the other.
+    #[arg(long, value_enum, default_value_t = From::Source)]
+    pub from: From,
+}
+
+fn positive_f64(s: &str) -> std::result::Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if v.is_finite() && v > 0.0 && v <= 100.0 {
+        Ok(v)
+    } else {
+        Err(format!("'{s}' must be a number in (0, 100]"))
+    }
+}
+
+fn unit_f64(s: &str) -> std::result::Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}' must be in [0, 1]"))
+    }
+}
+
+/// `crmorph inspect`: the compatible triangulations.
+#[derive(Debug, Clone, Args)]
+pub struct InspectArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+}
+
+/// `crmorph frame`: one frame of the morph.
+#[derive(Debug, Clone, Args)]
+pub struct FrameArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+    /// Time of the frame, from 0 (source) to 1 (target).
+    #[arg(long, value_parser = unit_f64)]
+    pub at: f64,
+    /// Interpolation method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
+    pub method: MethodArg,
+}
+
+/// `crmorph morph`: the whole morph.
+#[derive(Debug, Clone, Args)]
+pub struct MorphArgs {
+    #[command(flatten)]
+    pub inputs: Inputs,
+    /// Number of frames, the first at t = 0 and the last at t = 1.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    pub frames: u32,
+    /// Interpolation method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
+    pub method: MethodArg,
+}
+
+/// A usage problem found after parsing (exit status 2).
+#[derive(Debug)]
+pub struct Usage(pub String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+impl std::error::Error for Usage {}
+
+fn output_format(out: &Path, allowed: &[Format], command: &str) -> Result<Format> {
+    let names = allowed
+        .iter()
+        .map(|f| format!(".{}", format!("{f:?}").to_lowercase()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    match Format::of(out) {
+        Some(f) if allowed.contains(&f) => Ok(f),
+        Some(_) => Err(Usage(format!(
+            "{}: crmorph {command} cannot write this format yet; use {names}",
+            out.display()
+        ))
+        .into()),
+        None => Err(Usage(format!(
+            "{}: unknown output extension; crmorph {command} writes {names}",
+            out.display()
+        ))
+        .into()),
+    }
+}
+
+fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
+    let mut ids = ControlIds::default();
+    ids.boundary = inputs.boundary_id.clone();
+    ids.feature_prefix = inputs.feature_prefix.clone();
+    ids.skeleton = inputs.skeleton_id.clone();
+    let mut opts = ReadOptions::default();
+    opts.ids = ids;
+    opts.density = inputs.density;
+    let s = Drawing::open(&inputs.source, &opts)?;
+    let t = Drawing::open(&inputs.target, &opts)?;
+    Ok((s, t))
+}
+
+fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Compatible> {
+    refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
+    progress.stage("reading drawings");
+    let (s, t) = read_both(inputs)?;
+    let mut opts = MorphOptions::default();
+    opts.from_target = inputs.from == From::Target;
+    opts.density = inputs.density;
+    progress.stage("compatible triangulation");
+    Ok(build(&s, &t, &opts)?)
+}
+
+/// Runs `inspect`.
+pub fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
+    let fmt = output_format(&a.inputs.output, &[Format::Svg, Format::Json], "inspect")?;
+    let c = compatible(&a.inputs, progress)?;
+    let bytes = match fmt {
+        Format::Json => crmorph::json::meshes_json(&c.meshes),
+        _ => crmorph::inspect::inspect_svg(&c),
+    };
+    write_atomic(&a.inputs.output, bytes.as_bytes())
+}
+
+/// Runs `frame`.
+pub fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
+    output_format(&a.inputs.output, &[Format::Json], "frame")?;
+    let c = compatible(&a.inputs, progress)?;
+    progress.stage("interpolation");
+    let m = &c.meshes;
+    let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;
+    let v = interp.at_vec(a.at);
+    write_atomic(
+        &a.inputs.output,
+        crmorph::json::frame_json(m, a.at, &v).as_bytes(),
+    )
+}
+
+/// Runs `morph`.
+pub fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
+    output_format(&a.inputs.output, &[Format::Json], "morph")?;
+    let c = compatible(&a.inputs, progress)?;
+    progress.stage("interpolation");
+    let m = &c.meshes;
+    let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;
+    let n = a.frames as usize;
+    let ts: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+    let frames = interp.frames(&ts);
+    let docs: Vec<String> = ts
+        .iter()
+        .zip(&frames)
+        .map(|(t, v)| crmorph::json::frame_json(m, *t, v))
+        .collect();
+    let json = format!("{{\"frames\":[{}]}}", docs.join(","));
+    if json.len() > 1 << 31 {
+        bail!(
+            "{}: the output would be larger than 2 GiB; use fewer frames",
+            a.inputs.output.display()
+        );
+    }
+    write_atomic(&a.inputs.output, json.as_bytes())
+}
