@@ -1,0 +1,7 @@
+//! Integration tests over the fixtures: one binary, one module per area.
+
+mod common;
+mod compatible;
+mod errors;
+mod motion;
+mod similarity;

@@ -1,0 +1,28 @@
+//! Invariants 1 and 2 of DESIGN.md §5 for the disc-based interpolation on every fixture.
+
+use crate::common::{compatible, open, pairs};
+use crmorph::mesh::count_inverted;
+use crmorph::rigid::{Interpolator, Method};
+
+#[test]
+fn frames_are_exact_at_the_ends_and_never_inverted() {
+    for (name, s, t) in pairs() {
+        let (s, t) = (open(&s), open(&t));
+        let c = compatible(&s, &t, false);
+        let m = &c.meshes;
+        let tol = 1e-9 * c.tolerances.diagonal;
+        let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+        let ts: Vec<f64> = (0..=40).map(|i| i as f64 / 40.0).collect();
+        let frames = interp.frames(&ts);
+        for (p, q) in frames[0].iter().zip(&m.source) {
+            assert!(p.distance(*q) <= tol, "{name}: t=0 off by {}", p.distance(*q));
+        }
+        for (p, q) in frames[40].iter().zip(&m.target) {
+            assert!(p.distance(*q) <= tol, "{name}: t=1 off by {}", p.distance(*q));
+        }
+        for (t, f) in ts.iter().zip(&frames) {
+            let n = count_inverted(&m.triangles, f);
+            assert_eq!(n, 0, "{name}: {n} inverted triangles at t={t}");
+        }
+    }
+}
