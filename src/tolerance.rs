@@ -1,8 +1,10 @@
 //! One tolerance vocabulary, relative to the drawing's size.
 //!
-//! Every geometric tolerance in crmorph is a fraction of the **diagonal** of the drawing's
-//! bounding box (the boundary's, or the viewBox's in image-morph mode), so a drawing and a copy of
-//! it scaled by 1000 give the same triangulation and the same morph up to that scale.
+//! Every geometric tolerance in crmorph is a fraction of the drawing's size, called its
+//! **diagonal**: the diameter of the boundary's defining points about their centroid — exactly the
+//! diagonal for a rectangle, and for the viewBox rectangle in image-morph mode. Unlike a
+//! bounding-box diagonal it does not change when the drawing rotates, so a drawing and a rotated,
+//! scaled copy of it are flattened, triangulated and morphed alike, up to that similarity.
 //!
 //! | name | fraction of the diagonal | used for |
 //! |---|---|---|
@@ -21,7 +23,7 @@ pub const MAX_COORDINATE: f64 = 1e12;
 /// Tolerances derived from a drawing's size and the user's density setting.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerances {
-    /// Diagonal of the drawing's bounding box, in user units.
+    /// The drawing's size (see the module docs), in user units.
     pub diagonal: f64,
     /// Maximum distance between a curve and its flattened polyline.
     pub flatten: f64,

@@ -206,6 +206,25 @@ fn single_subpath(f: &Found, subs: Vec<Subpath>, file: &str) -> Result<Subpath> 
     }
 }
 
+/// The drawing's size for relative tolerances: the diameter of the boundary's defining points
+/// (end and control points) about their centroid. For a rectangle this is exactly its diagonal;
+/// unlike a bounding-box diagonal it does not change when the drawing is rotated, so a rotated copy
+/// is flattened exactly like the original (DESIGN.md §5 invariant 4 depends on it).
+fn drawing_size(path: &BezPath) -> f64 {
+    let mut pts = Vec::new();
+    for el in path.elements() {
+        match *el {
+            kurbo::PathEl::MoveTo(p) | kurbo::PathEl::LineTo(p) => pts.push(p),
+            kurbo::PathEl::QuadTo(a, b) => pts.extend([a, b]),
+            kurbo::PathEl::CurveTo(a, b, c) => pts.extend([a, b, c]),
+            kurbo::PathEl::ClosePath => {}
+        }
+    }
+    let pts: Vec<Point> = pts.iter().map(|p| Point::new(p.x, p.y)).collect();
+    let c = crate::geometry::centroid(&pts);
+    2.0 * pts.iter().map(|p| p.distance(c)).fold(0.0, f64::max)
+}
+
 /// Reads and validates the control geometry of a parsed document.
 pub(crate) fn read_controls(
     root: &Element,
@@ -246,7 +265,10 @@ pub(crate) fn read_controls(
             ))
         }
     };
-    let diagonal = lo.distance(hi);
+    let diagonal = match boundary {
+        Some(b) => drawing_size(&b.path),
+        None => lo.distance(hi),
+    };
     if !(diagonal >= MIN_DIAGONAL) {
         let who = boundary
             .map(|b| b.id.clone())
