@@ -13,14 +13,21 @@ use crmorph::drawing::{Drawing, ReadOptions};
 fn fixtures() -> Vec<(String, Drawing, Drawing)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
     let mut v = Vec::new();
-    let mut dirs: Vec<_> = std::fs::read_dir(&root).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut dirs: Vec<_> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     dirs.sort();
     for d in dirs {
         let (s, t) = (d.join("source.svg"), d.join("target.svg"));
         if s.exists() && t.exists() {
             let o = ReadOptions::default();
             let name = d.file_name().unwrap().to_string_lossy().into_owned();
-            v.push((name, Drawing::open(&s, &o).unwrap(), Drawing::open(&t, &o).unwrap()));
+            v.push((
+                name,
+                Drawing::open(&s, &o).unwrap(),
+                Drawing::open(&t, &o).unwrap(),
+            ));
         }
     }
     v

@@ -8,7 +8,9 @@ fn bin() -> Command {
 }
 
 fn fixture(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures").join(p)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(p)
 }
 
 fn run(args: &[&std::ffi::OsStr]) -> Output {
@@ -28,7 +30,14 @@ fn inspect_writes_svg_and_json() {
     let dir = tempfile::tempdir().unwrap();
     let (s, t) = (fixture("u-to-s/source.svg"), fixture("u-to-s/target.svg"));
     let svg = dir.path().join("tri.svg");
-    let o = run(&[os("inspect"), os(&s), os(&t), os("-o"), os(&svg), os("--quiet")]);
+    let o = run(&[
+        os("inspect"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&svg),
+        os("--quiet"),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&svg).unwrap();
     usvg::Tree::from_str(&text, &usvg::Options::default()).expect("inspect SVG re-parses");
@@ -44,16 +53,32 @@ fn inspect_writes_svg_and_json() {
     let again = dir.path().join("m2.json");
     let o = run(&[os("inspect"), os(&s), os(&t), os("-o"), os(&again)]);
     assert!(o.status.success());
-    assert_eq!(std::fs::read(&json).unwrap(), std::fs::read(&again).unwrap());
+    assert_eq!(
+        std::fs::read(&json).unwrap(),
+        std::fs::read(&again).unwrap()
+    );
 }
 
 #[test]
 fn frame_writes_the_mesh_at_t_for_each_method() {
     let dir = tempfile::tempdir().unwrap();
-    let (s, t) = (fixture("leaf-to-butterfly/source.svg"), fixture("leaf-to-butterfly/target.svg"));
+    let (s, t) = (
+        fixture("leaf-to-butterfly/source.svg"),
+        fixture("leaf-to-butterfly/target.svg"),
+    );
     for method in ["disc", "triangle", "linear"] {
         let out = dir.path().join(format!("{method}.json"));
-        let o = run(&[os("frame"), os(&s), os(&t), os("--at"), os("0.5"), os("--method"), os(method), os("-o"), os(&out)]);
+        let o = run(&[
+            os("frame"),
+            os(&s),
+            os(&t),
+            os("--at"),
+            os("0.5"),
+            os("--method"),
+            os(method),
+            os("-o"),
+            os(&out),
+        ]);
         assert!(o.status.success(), "{method}: {}", stderr(&o));
         let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
         assert_eq!(v["t"], 0.5);
@@ -67,9 +92,23 @@ fn bad_usage_exits_2() {
     assert_eq!(o.status.code(), Some(2));
     let dir = tempfile::tempdir().unwrap();
     let (s, t) = (fixture("u-to-s/source.svg"), fixture("u-to-s/target.svg"));
-    let o = run(&[os("inspect"), os(&s), os(&t), os("-o"), os(&dir.path().join("x.txt"))]);
+    let o = run(&[
+        os("inspect"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&dir.path().join("x.txt")),
+    ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    let o = run(&[os("frame"), os(&s), os(&t), os("--at"), os("1.5"), os("-o"), os(&dir.path().join("f.json"))]);
+    let o = run(&[
+        os("frame"),
+        os(&s),
+        os(&t),
+        os("--at"),
+        os("1.5"),
+        os("-o"),
+        os(&dir.path().join("f.json")),
+    ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
 
@@ -77,7 +116,14 @@ fn bad_usage_exits_2() {
 fn bad_input_exits_1_with_one_line_and_no_output() {
     let dir = tempfile::tempdir().unwrap();
     let good = fixture("errors/square.svg");
-    for bad in ["open-boundary.svg", "truncated.svg", "empty.svg", "not-svg.svg", "features-cross.svg", "square-no-line.svg"] {
+    for bad in [
+        "open-boundary.svg",
+        "truncated.svg",
+        "empty.svg",
+        "not-svg.svg",
+        "features-cross.svg",
+        "square-no-line.svg",
+    ] {
         let out = dir.path().join("out.json");
         let b = fixture(&format!("errors/{bad}"));
         let o = run(&[os("inspect"), os(&good), os(&b), os("-o"), os(&out)]);
@@ -87,9 +133,19 @@ fn bad_input_exits_1_with_one_line_and_no_output() {
         assert!(e.starts_with("error: "), "{e}");
         assert!(!e.contains("panicked"), "{e}");
         assert!(!out.exists(), "{bad}: a partial output was left");
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "{bad}: temporary files left");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{bad}: temporary files left"
+        );
     }
-    let o = run(&[os("inspect"), os(&dir.path().join("missing.svg")), os(&good), os("-o"), os(&dir.path().join("o.svg"))]);
+    let o = run(&[
+        os("inspect"),
+        os(&dir.path().join("missing.svg")),
+        os(&good),
+        os("-o"),
+        os(&dir.path().join("o.svg")),
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("missing.svg"));
 }
@@ -100,7 +156,13 @@ fn an_input_is_never_overwritten() {
     let s = dir.path().join("s.svg");
     std::fs::copy(fixture("u-to-s/source.svg"), &s).unwrap();
     let before = std::fs::read(&s).unwrap();
-    let o = run(&[os("inspect"), os(&s), os(&fixture("u-to-s/target.svg")), os("-o"), os(&s)]);
+    let o = run(&[
+        os("inspect"),
+        os(&s),
+        os(&fixture("u-to-s/target.svg")),
+        os("-o"),
+        os(&s),
+    ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("overwrite"));
     assert_eq!(std::fs::read(&s).unwrap(), before);
@@ -112,6 +174,9 @@ fn the_demo_runs_with_no_arguments() {
     let o = bin().current_dir(dir.path()).output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     for f in ["inspect.svg", "meshes.json", "frames.json"] {
-        assert!(dir.path().join("crmorph-demo").join(f).exists(), "{f} missing");
+        assert!(
+            dir.path().join("crmorph-demo").join(f).exists(),
+            "{f} missing"
+        );
     }
 }

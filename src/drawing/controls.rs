@@ -180,7 +180,7 @@ fn check_coordinates(f: &Found, file: &str) -> Result<()> {
                     file,
                     &f.id,
                     format!(
-                        "has a coordinate ({}, {}) too large to morph accurately",
+                        "has a coordinate ({:.3e}, {:.3e}) too large to morph accurately",
                         p.x, p.y
                     ),
                 )
@@ -204,6 +204,25 @@ fn single_subpath(f: &Found, subs: Vec<Subpath>, file: &str) -> Result<Subpath> 
         )
         .with_hint("split it into separate elements")),
     }
+}
+
+/// Whether every point lies within `tol` of the line through the first point and the point
+/// farthest from it.
+fn all_on_one_line(points: &[Point], tol: f64) -> bool {
+    let Some(&a) = points.first() else {
+        return true;
+    };
+    let b = points
+        .iter()
+        .copied()
+        .max_by(|p, q| p.distance(a).total_cmp(&q.distance(a)))
+        .unwrap_or(a);
+    let len = a.distance(b);
+    if len <= tol {
+        return true;
+    }
+    let dir = (b - a) / len;
+    points.iter().all(|p| dir.perp_dot(*p - a).abs() <= tol)
 }
 
 /// The drawing's size for relative tolerances: the diameter of the boundary's defining points
@@ -300,6 +319,13 @@ pub(crate) fn read_controls(
             points: vec![lo, Point::new(hi.x, lo.y), hi, Point::new(lo.x, hi.y)],
         },
     };
+    if all_on_one_line(&boundary_curve.points, 1e-9 * diagonal) {
+        return Err(Error::at(
+            file,
+            &boundary_curve.id,
+            "is degenerate: it encloses no area (its points lie on one line)",
+        ));
+    }
     if let Some((i, j)) = polyline_self_intersection(&boundary_curve.points, true) {
         let p = boundary_curve.points[i];
         return Err(Error::at(

@@ -193,7 +193,10 @@ mod tests {
         );
         assert_eq!(c.anchors[0].point, Point::new(55.0, 10.0));
         assert_eq!(c.skeleton[0].points.len(), 3);
-        assert!((d.tolerances.diagonal - 80.0 * 2f64.sqrt()).abs() < 1e-9, "the size of a square is its diagonal");
+        assert!(
+            (d.tolerances.diagonal - 80.0 * 2f64.sqrt()).abs() < 1e-9,
+            "the size of a square is its diagonal"
+        );
     }
 
     #[test]

@@ -69,7 +69,7 @@ impl std::fmt::Display for XmlProblem {
         match self {
             XmlProblem::Empty => write!(f, "the file is empty"),
             XmlProblem::Malformed(m) => write!(f, "not a well-formed SVG file: {m}"),
-            XmlProblem::Truncated(m) => write!(f, "the file is truncated: <{m}> is never closed"),
+            XmlProblem::Truncated(m) => write!(f, "the file is truncated: it ends inside <{m}>"),
             XmlProblem::NotSvg(m) => {
                 write!(f, "not an SVG file: the root element is <{m}>, not <svg>")
             }
@@ -113,8 +113,18 @@ pub(crate) fn parse(text: &str) -> Result<Element, XmlProblem> {
     let mut count = 0usize;
     loop {
         let ev = reader.read_event().map_err(|e| {
-            let pos = reader.error_position();
-            XmlProblem::Malformed(format!("{e} (at byte {pos})"))
+            let pos = reader.error_position() as usize;
+            let msg = e.to_string();
+            // An error at the very end of the text means the file was cut off.
+            if msg.contains("end of input") || pos + 1 >= text.len() {
+                let open = stack
+                    .last()
+                    .map(|e| e.name.clone())
+                    .unwrap_or_else(|| "svg".into());
+                XmlProblem::Truncated(open)
+            } else {
+                XmlProblem::Malformed(format!("{msg} (at byte {pos})"))
+            }
         })?;
         match ev {
             Event::Start(_) | Event::Empty(_) if root.is_some() && stack.is_empty() => {

@@ -21,7 +21,11 @@ pub fn pairs() -> Vec<(String, PathBuf, PathBuf)> {
         }
     }
     v.sort();
-    assert!(v.len() >= 4, "expected at least four fixture pairs, found {}", v.len());
+    assert!(
+        v.len() >= 4,
+        "expected at least four fixture pairs, found {}",
+        v.len()
+    );
     v
 }
 

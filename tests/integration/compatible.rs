@@ -15,12 +15,21 @@ fn every_fixture_gives_flip_free_compatible_meshes_in_both_directions() {
             assert!(r.is_ok(), "{name} (from target: {from_target}): {r:?}");
             // the source side lands on the source curves too
             for (curve, pair) in m.curves.iter().zip(&c.pairs) {
-                assert_eq!(curve.vertices.len(), pair.source.len(), "{name}: {}", curve.name);
+                assert_eq!(
+                    curve.vertices.len(),
+                    pair.source.len(),
+                    "{name}: {}",
+                    curve.name
+                );
                 for (&v, &p) in curve.vertices.iter().zip(&pair.source) {
                     assert!(m.source[v as usize].distance(p) <= 1e-9 * c.tolerances.diagonal);
                 }
             }
-            assert!(m.triangles.len() > 100, "{name}: only {} triangles", m.triangles.len());
+            assert!(
+                m.triangles.len() > 100,
+                "{name}: only {} triangles",
+                m.triangles.len()
+            );
             assert_eq!(m.curves[0].name, "boundary");
         }
     }

@@ -12,7 +12,10 @@ fn read_err(name: &str) -> String {
             let s = e.to_string();
             assert!(e.is_input(), "{name}: {s}");
             assert!(!s.contains('\n'), "{name}: {s}");
-            assert!(s.contains(name), "{name}: the message does not name the file: {s}");
+            assert!(
+                s.contains(name),
+                "{name}: the message does not name the file: {s}"
+            );
             s
         }
     }
@@ -33,7 +36,10 @@ fn each_bad_file_is_named_with_its_problem() {
     ];
     for (file, expected) in cases {
         let e = read_err(file);
-        assert!(e.contains(expected), "{file}: expected '{expected}' in: {e}");
+        assert!(
+            e.contains(expected),
+            "{file}: expected '{expected}' in: {e}"
+        );
     }
 }
 
@@ -43,7 +49,9 @@ fn a_feature_in_one_file_only_is_named() {
     let a = Drawing::open(&fixtures().join("errors/square.svg"), &o).unwrap();
     let b = Drawing::open(&fixtures().join("errors/square-no-line.svg"), &o).unwrap();
     for (s, t) in [(&a, &b), (&b, &a)] {
-        let e = build(s, t, &MorphOptions::default()).unwrap_err().to_string();
+        let e = build(s, t, &MorphOptions::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("feature-line"), "{e}");
         assert!(!e.contains('\n'));
     }

@@ -15,10 +15,18 @@ fn frames_are_exact_at_the_ends_and_never_inverted() {
         let ts: Vec<f64> = (0..=40).map(|i| i as f64 / 40.0).collect();
         let frames = interp.frames(&ts);
         for (p, q) in frames[0].iter().zip(&m.source) {
-            assert!(p.distance(*q) <= tol, "{name}: t=0 off by {}", p.distance(*q));
+            assert!(
+                p.distance(*q) <= tol,
+                "{name}: t=0 off by {}",
+                p.distance(*q)
+            );
         }
         for (p, q) in frames[40].iter().zip(&m.target) {
-            assert!(p.distance(*q) <= tol, "{name}: t=1 off by {}", p.distance(*q));
+            assert!(
+                p.distance(*q) <= tol,
+                "{name}: t=1 off by {}",
+                p.distance(*q)
+            );
         }
         for (t, f) in ts.iter().zip(&frames) {
             let n = count_inverted(&m.triangles, f);

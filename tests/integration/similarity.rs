@@ -10,9 +10,16 @@ use crmorph::Point;
 
 /// Wraps a drawing's content in a group with `transform`, keeping the root element.
 fn transformed(svg: &str, transform: &str) -> String {
-    let open_end = svg.find("<svg").and_then(|i| svg[i..].find('>').map(|j| i + j + 1)).unwrap();
+    let open_end = svg
+        .find("<svg")
+        .and_then(|i| svg[i..].find('>').map(|j| i + j + 1))
+        .unwrap();
     let close = svg.rfind("</svg>").unwrap();
-    format!("{}<g transform=\"{transform}\">{}</g></svg>", &svg[..open_end], &svg[open_end..close])
+    format!(
+        "{}<g transform=\"{transform}\">{}</g></svg>",
+        &svg[..open_end],
+        &svg[open_end..close]
+    )
 }
 
 fn similarity(angle_deg: f64, scale: f64, shift: Point) -> impl Fn(Point) -> Point {
@@ -54,14 +61,27 @@ fn similar_targets_give_similar_meshes_and_rigid_frames() {
             "translate({} {}) scale({scale}) rotate({angle})",
             shift.x, shift.y
         );
-        let tgt = Drawing::from_str("rotated.svg", &transformed(&text, &tr), &ReadOptions::default())
-            .unwrap_or_else(|e| panic!("{e}"));
-        let c = build(&src, &tgt, &MorphOptions::default()).unwrap_or_else(|e| panic!("{angle}°: {e}"));
+        let tgt = Drawing::from_str(
+            "rotated.svg",
+            &transformed(&text, &tr),
+            &ReadOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let c =
+            build(&src, &tgt, &MorphOptions::default()).unwrap_or_else(|e| panic!("{angle}°: {e}"));
         let m = &c.meshes;
         let f = similarity(angle, scale, shift);
         let tol = 1e-9 * c.tolerances.diagonal;
-        let worst = m.source.iter().zip(&m.target).map(|(p, q)| f(*p).distance(*q)).fold(0.0, f64::max);
-        assert!(worst <= tol, "{angle}°: target mesh is off the similarity by {worst}");
+        let worst = m
+            .source
+            .iter()
+            .zip(&m.target)
+            .map(|(p, q)| f(*p).distance(*q))
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= tol,
+            "{angle}°: target mesh is off the similarity by {worst}"
+        );
 
         let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
         // the short way round: 181° turns by -179°
@@ -70,9 +90,19 @@ fn similar_targets_give_similar_meshes_and_rigid_frames() {
             let t = k as f64 / 10.0;
             let v = interp.at_vec(t);
             let (a, s, res) = fit(&m.source, &v);
-            assert!(res <= 1e-8 * c.tolerances.diagonal, "{angle}° t={t}: not a similarity ({res})");
-            assert!((a.to_degrees() - t * expected).abs() < 1e-6, "{angle}° t={t}: angle {}", a.to_degrees());
-            assert!((s - (1.0 - t + t * scale)).abs() < 1e-9, "{angle}° t={t}: scale {s}");
+            assert!(
+                res <= 1e-8 * c.tolerances.diagonal,
+                "{angle}° t={t}: not a similarity ({res})"
+            );
+            assert!(
+                (a.to_degrees() - t * expected).abs() < 1e-6,
+                "{angle}° t={t}: angle {}",
+                a.to_degrees()
+            );
+            assert!(
+                (s - (1.0 - t + t * scale)).abs() < 1e-9,
+                "{angle}° t={t}: scale {s}"
+            );
         }
     }
 }
