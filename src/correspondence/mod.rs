@@ -6,9 +6,14 @@
 //! normalized arc length so that both curves get the same vertex count, every original flattened
 //! vertex of each curve is kept (so no shape detail is lost), and no edge is longer than the
 //! density allows.
-
-use crate::geometry::Point;
-use crate::mesh::CurveKind;
+//!
+//! | file | step |
+//! |---|---|
+//! | `measure.rs` | arc-length measurement of a polyline: sample, project, insert, re-start |
+//! | `orientation.rs` | counter-clockwise closed curves; direction of open targets; best start |
+//! | `salient.rs` | salient point detection (turning over an arc-length window) |
+//! | `matching.rs` | order-preserving association by dynamic programming (cyclic when closed) |
+//! | `resample.rs` | distribution of vertices between associated points |
 
 mod matching;
 mod measure;
@@ -19,11 +24,32 @@ mod salient;
 mod tests;
 
 use crate::drawing::{ControlCurve, Controls};
+use crate::geometry::Point;
+use crate::mesh::CurveKind;
 use crate::tolerance::{Tolerances, MAX_COORDINATE};
 use crate::{Error, Result};
 use matching::Mark;
 use measure::Polyline;
 use salient::Salient;
+
+/// A source curve and its target twin with equal vertex counts: `source[i]` corresponds to
+/// `target[i]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurvePair {
+    /// The element id (`boundary`, `feature-eye`, …), as in the source file.
+    pub id: String,
+    /// Boundary or feature.
+    pub kind: CurveKind,
+    /// Whether the curve is closed (last vertex connects to the first, not repeated).
+    pub closed: bool,
+    /// Source vertices (closed curves counter-clockwise).
+    pub source: Vec<Point>,
+    /// Target vertices, same count, corresponding one to one.
+    pub target: Vec<Point>,
+    /// Indices (into both vertex lists) of the associated pairs: matched salient points, anchors,
+    /// and an open curve's end points; a closed curve's first pair is index 0.
+    pub salient: Vec<usize>,
+}
 
 /// Settings of the vertex correspondence. Construct with [`Default`] and the `with_*` setters.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,7 +59,8 @@ pub struct CorrespondenceOptions {
     /// most `tol.max_edge / density` long. Default: `1.0`.
     pub density: f64,
     /// Half-width `h` of the window over which the turning at a vertex is measured, as a
-    /// fraction of the curve's length (the detection scale of salient points). Default: `0.03`.
+    /// fraction of the curve's length (the detection scale of salient points; clamped to at most
+    /// `0.25`). Default: `0.03`.
     pub window_fraction: f64,
     /// Smallest turning (degrees) over the window for a vertex to be salient. Default: `25.0`.
     pub salient_angle_deg: f64,
@@ -261,6 +288,16 @@ pub fn correspond(
             BOTH,
             &src.id,
             "is closed in one file and open in the other",
+        ));
+    }
+    if let Some((p, q)) = anchors
+        .iter()
+        .find(|(p, q)| !p.is_finite() || !q.is_finite())
+    {
+        return Err(Error::at(
+            BOTH,
+            &src.id,
+            format!("has an anchor out of range ({p} ↦ {q})"),
         ));
     }
     let closed = src.closed;
@@ -496,22 +533,4 @@ fn clean(curve: &ControlCurve, tol: &Tolerances) -> Result<Vec<Point>> {
         return Err(err("is closed but encloses no area".into()));
     }
     Ok(pts)
-}
-
-/// A source curve and its target twin with equal vertex counts: `source[i]` corresponds to
-/// `target[i]`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CurvePair {
-    /// The element id (`boundary`, `feature-eye`, …), as in the source file.
-    pub id: String,
-    /// Boundary or feature.
-    pub kind: CurveKind,
-    /// Whether the curve is closed (last vertex connects to the first, not repeated).
-    pub closed: bool,
-    /// Source vertices (closed curves counter-clockwise).
-    pub source: Vec<Point>,
-    /// Target vertices, same count, corresponding one to one.
-    pub target: Vec<Point>,
-    /// Indices (into both vertex lists) of the associated salient points and anchors.
-    pub salient: Vec<usize>,
 }

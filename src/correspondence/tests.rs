@@ -374,3 +374,92 @@ proptest! {
         prop_assert_eq!(pair, again);
     }
 }
+
+#[test]
+fn an_anchor_picks_which_corner_goes_where() {
+    let tol = tol();
+    let sq_corners = [p(1., 1.), p(4., 1.), p(4., 4.), p(1., 4.)];
+    let dia_corners = [p(5., 2.), p(7., 4.), p(5., 6.), p(3., 4.)];
+    let sq = dense_polygon(&sq_corners, 5);
+    let dia = dense_polygon(&dia_corners, 4);
+    let opts = CorrespondenceOptions::default();
+    for shift in 0..4 {
+        let pin = [(sq_corners[0], dia_corners[shift])];
+        let pair = correspond(
+            &curve("boundary", true, sq.clone()),
+            &curve("boundary", true, dia.clone()),
+            &pin,
+            &tol,
+            &opts,
+        )
+        .unwrap();
+        check_pair(&pair, &sq, &dia, &tol);
+        assert_eq!((pair.source[0], pair.target[0]), pin[0]);
+        // The other corners follow in order, each associated with a corner.
+        for (k, c) in sq_corners.iter().enumerate() {
+            let i = pair.source.iter().position(|q| q == c).unwrap();
+            assert!(pair.salient.contains(&i));
+            assert_eq!(pair.target[i], dia_corners[(k + shift) % 4]);
+        }
+    }
+}
+
+#[test]
+fn open_zigzags_match_corner_to_corner() {
+    let tol = tol();
+    let zig: Vec<Point> = (0..6)
+        .map(|k| p(1.0 + k as f64, if k % 2 == 0 { 2.0 } else { 3.0 }))
+        .collect();
+    // The target: stretched unevenly and drawn densely, so its corners sit elsewhere in arc length.
+    let corners: Vec<Point> = [0.0, 0.7, 2.2, 2.9, 4.6, 5.2]
+        .iter()
+        .enumerate()
+        .map(|(k, &x)| p(2.0 + x, if k % 2 == 0 { 5.0 } else { 6.5 }))
+        .collect();
+    let mut tgt = Vec::new();
+    for w in corners.windows(2) {
+        for j in 0..3 {
+            tgt.push(w[0] + (w[1] - w[0]) * (j as f64 / 3.0));
+        }
+    }
+    tgt.push(corners[5]);
+    let pair = correspond(
+        &curve("feature-zig", false, zig.clone()),
+        &curve("feature-zig", false, tgt.clone()),
+        &[],
+        &tol,
+        &CorrespondenceOptions::default(),
+    )
+    .unwrap();
+    check_pair(&pair, &zig, &tgt, &tol);
+    assert_eq!(pair.salient.len(), 6);
+    for (k, c) in zig.iter().enumerate() {
+        let i = pair.source.iter().position(|q| q == c).unwrap();
+        assert_eq!(pair.target[i], corners[k], "corner {k}");
+    }
+}
+
+/// Timing on a large pair; run with
+/// `cargo test --release --lib correspondence::tests::timing -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn timing() {
+    let tol = tol();
+    let radii: Vec<f64> = (0..4000)
+        .map(|k| 2.0 + 0.5 * ((k as f64) * 0.0157 * 12.0).sin())
+        .collect();
+    let radii2: Vec<f64> = (0..3000)
+        .map(|k| 2.5 + 0.6 * ((k as f64) * 0.0209 * 12.0 + 0.3).sin())
+        .collect();
+    let a = curve("boundary", true, star(p(5., 5.), &radii, 0.0, false));
+    let b = curve("boundary", true, star(p(5., 5.), &radii2, 0.4, false));
+    let opts = CorrespondenceOptions::default();
+    let t = std::time::Instant::now();
+    let pair = correspond(&a, &b, &[], &tol, &opts).unwrap();
+    println!(
+        "4000 ↔ 3000 vertices: {} pairs, {} salient, {:?}",
+        pair.source.len(),
+        pair.salient.len(),
+        t.elapsed()
+    );
+}
