@@ -1,4 +1,4 @@
-//! Association of salient points (§3, after [15]): an order-preserving match of source salient
+//! Association of salient points (§3, after \[15\]): an order-preserving match of source salient
 //! points to target salient points by dynamic programming, allowing points to stay unmatched.
 //!
 //! Within a span (between two forced pairs: end points, anchors), each salient point has a

@@ -1,4 +1,4 @@
-//! Vertex correspondence between a source curve and its target twin (§3, after [15]).
+//! Vertex correspondence between a source curve and its target twin (§3, after \[15\]).
 //!
 //! Salient points (curvature extrema at a scale) are detected on both curves and associated by an
 //! order-preserving dynamic-programming match (cyclic for closed curves); anchors override the
@@ -260,7 +260,7 @@ fn name_files(err: Error, src_file: &str, tgt_file: &str) -> Error {
     }
 }
 
-/// Vertex correspondence for one curve pair (§3, after [15]).
+/// Vertex correspondence for one curve pair (§3, after \[15\]).
 ///
 /// 1. Orientation: closed curves are made counter-clockwise; an open target is reversed when
 ///    that fits the source better (anchors decide when there are two or more, else a best-fit
@@ -411,6 +411,7 @@ fn spans_pairs(
 ) -> Vec<(usize, usize)> {
     let ss = salient::detect(sp, opts);
     let ts = salient::detect(tp, opts);
+    let (hs, ht) = (salient::window(sp, opts), salient::window(tp, opts));
     let mut ends: Vec<(usize, usize, f64, f64)> = forced
         .iter()
         .map(|&(a, b)| (a, b, sp.s(a), tp.s(b)))
@@ -422,23 +423,30 @@ fn spans_pairs(
     for w in ends.windows(2) {
         let ((a0, b0, s0, t0), (a1, b1, s1, t1)) = (w[0], w[1]);
         pairs.push((a0, b0));
-        let inside =
-            |pts: &[Salient], lo: usize, hi: usize, x0: f64, x1: f64| -> (Vec<usize>, Vec<Mark>) {
-                pts.iter()
-                    .filter(|p| p.index > lo && p.index < hi)
-                    .map(|p| {
-                        (
-                            p.index,
-                            Mark {
-                                u: (p.s - x0) / (x1 - x0),
-                                turning: p.turning,
-                            },
-                        )
-                    })
-                    .unzip()
-            };
-        let (si, sm) = inside(&ss, a0, a1, s0, s1);
-        let (ti, tm) = inside(&ts, b0, b1, t0, t1);
+        // Salient points closer than the window to a forced pair are suppressed by it, as a
+        // weaker extremum is by a stronger one.
+        let inside = |pts: &[Salient],
+                      lo: usize,
+                      hi: usize,
+                      x0: f64,
+                      x1: f64,
+                      h: f64|
+         -> (Vec<usize>, Vec<Mark>) {
+            pts.iter()
+                .filter(|p| p.index > lo && p.index < hi && p.s - x0 >= h && x1 - p.s >= h)
+                .map(|p| {
+                    (
+                        p.index,
+                        Mark {
+                            u: (p.s - x0) / (x1 - x0),
+                            turning: p.turning,
+                        },
+                    )
+                })
+                .unzip()
+        };
+        let (si, sm) = inside(&ss, a0, a1, s0, s1, hs);
+        let (ti, tm) = inside(&ts, b0, b1, t0, t1, ht);
         let (_, matched) = matching::associate_span(&sm, &tm, opts);
         pairs.extend(matched.into_iter().map(|(x, y)| (si[x], ti[y])));
     }

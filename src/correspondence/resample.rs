@@ -1,4 +1,4 @@
-//! Distribution of the remaining vertices (§3, after [15]): between consecutive associated points
+//! Distribution of the remaining vertices (§3, after \[15\]): between consecutive associated points
 //! both curves get the same number of vertices.
 //!
 //! Within a span, the normalized arc-length parameters of the source's own vertices and of the
@@ -84,7 +84,23 @@ pub(crate) fn distribute(
             associated: true,
         });
     }
-    let entries = split_long_edges(&entries, closed, max_edge, src.length(), tgt.length())?;
+    let mut entries = split_long_edges(&entries, closed, max_edge, src.length(), tgt.length())?;
+    spread(
+        &mut entries,
+        closed,
+        src.length(),
+        4.0 * snap,
+        |e| (e.s_src, e.v_src.is_some()),
+        |e, s| e.s_src = s,
+    );
+    spread(
+        &mut entries,
+        closed,
+        tgt.length(),
+        4.0 * snap,
+        |e| (e.s_tgt, e.v_tgt.is_some()),
+        |e, s| e.s_tgt = s,
+    );
     let point = |line: &Polyline, v: Option<usize>, s: f64| match v {
         Some(i) => line.points()[i % line.len()],
         None => line.point_at(s),
@@ -186,6 +202,61 @@ fn span(
             associated: false,
         });
         k += 1;
+    }
+}
+
+/// Evens out constructed positions on one side where two consecutive ones would come closer than
+/// `gap`: between two consecutive original vertices of that side (which bound one straight edge
+/// of it), the constructed positions are spread uniformly when any gap there is too small. Such
+/// crowding only happens where a short part of one curve corresponds to a long part of the other.
+fn spread(
+    entries: &mut [Entry],
+    closed: bool,
+    length: f64,
+    gap: f64,
+    get: impl Fn(&Entry) -> (f64, bool),
+    mut set: impl FnMut(&mut Entry, f64),
+) {
+    let count = entries.len();
+    let fixed: Vec<usize> = (0..count).filter(|&i| get(&entries[i]).1).collect();
+    let mut runs: Vec<(usize, usize, f64, f64)> = fixed
+        .windows(2)
+        .map(|w| (w[0], w[1], get(&entries[w[0]]).0, get(&entries[w[1]]).0))
+        .collect();
+    if closed {
+        if let (Some(&last), Some(&first)) = (fixed.last(), fixed.first()) {
+            runs.push((
+                last,
+                count + first,
+                get(&entries[last]).0,
+                length + get(&entries[first]).0,
+            ));
+        }
+    }
+    for (f0, f1, x0, x1) in runs {
+        let k = f1 - f0 - 1;
+        if k == 0 || (x1 - x0) / ((k + 1) as f64) < gap {
+            continue;
+        }
+        let at = |i: usize| {
+            if i >= count {
+                length + get(&entries[i - count]).0
+            } else {
+                get(&entries[i]).0
+            }
+        };
+        if (f0..f1).all(|i| at(i + 1) - at(i) >= gap) {
+            continue;
+        }
+        for r in 1..=k {
+            let x = x0 + (x1 - x0) * r as f64 / (k + 1) as f64;
+            let i = f0 + r;
+            if i >= count {
+                set(&mut entries[i - count], x - length);
+            } else {
+                set(&mut entries[i], x);
+            }
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! Salient point detection (§3, after [15]): curvature extrema of a curve at a scale.
+//! Salient point detection (§3, after \[15\]): curvature extrema of a curve at a scale.
 //!
 //! The turning of the curve at a vertex is measured over a window of arc length `±h` around it
 //! (`h` a fraction of the curve's length): the signed angle from the chord arriving at the vertex
@@ -32,6 +32,18 @@ fn signed_angle(a: crate::geometry::Point, b: crate::geometry::Point) -> f64 {
     a.perp_dot(b).atan2(a.dot(b))
 }
 
+/// The half-width `h` of the detection window on `curve`: also the radius of non-maximum
+/// suppression, and how close a salient point may come to an associated end point or anchor.
+pub(crate) fn window(curve: &Polyline, opts: &CorrespondenceOptions) -> f64 {
+    let f = opts.window_fraction;
+    let f = if f.is_finite() {
+        f.clamp(1e-6, 0.25)
+    } else {
+        0.03
+    };
+    f * curve.length()
+}
+
 /// The salient points of `curve`, sorted by arc length: at most `opts.max_salient`, the strongest
 /// ones.
 pub(crate) fn detect(curve: &Polyline, opts: &CorrespondenceOptions) -> Vec<Salient> {
@@ -41,7 +53,7 @@ pub(crate) fn detect(curve: &Polyline, opts: &CorrespondenceOptions) -> Vec<Sali
     if n < 3 || length <= 0.0 {
         return Vec::new();
     }
-    let h = opts.window_fraction.clamp(1e-6, 0.25) * length;
+    let h = window(curve, opts);
     let threshold = opts.salient_angle_deg.to_radians();
     let corner = opts.corner_angle_deg.to_radians();
     let pts = curve.points();

@@ -463,3 +463,76 @@ fn timing() {
         t.elapsed()
     );
 }
+
+/// Random open polylines in the drawing's box; `tiny` repeats some points a hair away.
+fn open_polyline(raw: &[(f64, f64, bool)]) -> Vec<Point> {
+    let mut pts: Vec<Point> = Vec::new();
+    for &(x, y, tiny) in raw {
+        let q = p(x, y);
+        if pts.last().is_some_and(|l| l.distance(q) < 1e-3) {
+            continue;
+        }
+        pts.push(q);
+        if tiny {
+            pts.push(q + p(1e-7, -1e-7));
+        }
+    }
+    pts
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #[test]
+    fn random_open_curves_correspond(
+        ra in prop::collection::vec((0.0f64..10.0, 0.0f64..8.0, prop::bool::weighted(0.2)), 2..30),
+        rb in prop::collection::vec((0.0f64..10.0, 0.0f64..8.0, prop::bool::weighted(0.2)), 2..30),
+    ) {
+        let (a, b) = (open_polyline(&ra), open_polyline(&rb));
+        prop_assume!(a.len() >= 2 && b.len() >= 2);
+        let tol = tol();
+        let pair = correspond(&curve("feature-f", false, a.clone()), &curve("feature-f", false, b.clone()), &[], &tol, &CorrespondenceOptions::default()).unwrap();
+        check_pair(&pair, &a, &b, &tol);
+        let (first, last) = (pair.target[0], *pair.target.last().unwrap());
+        prop_assert!((first == b[0] && last == *b.last().unwrap()) || (last == b[0] && first == *b.last().unwrap()));
+        prop_assert_eq!(pair.source[0], a[0]);
+    }
+
+    #[test]
+    fn one_anchor_on_random_stars_is_honoured(
+        ra in prop::collection::vec(0.5f64..3.0, 3..30),
+        rb in prop::collection::vec(0.5f64..3.0, 3..30),
+        ia in 0usize..1000,
+        ib in 0usize..1000,
+        ta in 0.0f64..1.0,
+    ) {
+        let tol = tol();
+        let a = star(p(5., 5.), &ra, 0.0, false);
+        let b = star(p(5., 5.), &rb, 0.3, true);
+        let (i, j) = (ia % a.len(), ib % b.len());
+        let pa = a[i] + (a[(i + 1) % a.len()] - a[i]) * ta;
+        let pin = [(pa, b[j])];
+        let pair = correspond(&curve("boundary", true, a.clone()), &curve("boundary", true, b.clone()), &pin, &tol, &CorrespondenceOptions::default()).unwrap();
+        check_pair(&pair, &a, &b, &tol);
+        prop_assert!(pair.source[0].distance(pa) < 1e-9);
+        prop_assert_eq!(pair.target[0], b[j]);
+    }
+}
+
+#[test]
+fn a_tiny_part_pinned_to_a_long_one_keeps_its_points_apart() {
+    let tol = tol();
+    let src = vec![p(0., 0.), p(10., 0.)];
+    let tgt = vec![p(-5., 5.), p(5., 5.), p(5. + 1e-7, 5.), p(15., 5.)];
+    // Anchors pin a source piece of length 1e-5 to the target's whole middle (length 10).
+    let pins = [(p(5., 0.), p(0., 5.)), (p(5. + 1e-5, 0.), p(10., 5.))];
+    let pair = correspond(
+        &curve("feature-f", false, src.clone()),
+        &curve("feature-f", false, tgt.clone()),
+        &pins,
+        &tol,
+        &CorrespondenceOptions::default(),
+    )
+    .unwrap();
+    check_pair(&pair, &src, &tgt, &tol);
+    assert_eq!(pair.salient.len(), 4);
+}
