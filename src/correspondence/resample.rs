@@ -218,44 +218,34 @@ fn spread(
     mut set: impl FnMut(&mut Entry, f64),
 ) {
     let count = entries.len();
-    let fixed: Vec<usize> = (0..count).filter(|&i| get(&entries[i]).1).collect();
-    let mut runs: Vec<(usize, usize, f64, f64)> = fixed
-        .windows(2)
-        .map(|w| (w[0], w[1], get(&entries[w[0]]).0, get(&entries[w[1]]).0))
-        .collect();
-    if closed {
-        if let (Some(&last), Some(&first)) = (fixed.last(), fixed.first()) {
-            runs.push((
-                last,
-                count + first,
-                get(&entries[last]).0,
-                length + get(&entries[first]).0,
-            ));
+    // Entry 0 is an associated pair, original on both sides; a closed curve's last run ends at
+    // its copy one length further on (index `count`).
+    let at = |entries: &[Entry], i: usize| {
+        if i == count {
+            length + get(&entries[0]).0
+        } else {
+            get(&entries[i]).0
         }
+    };
+    let mut fixed: Vec<usize> = (0..count).filter(|&i| get(&entries[i]).1).collect();
+    if closed {
+        fixed.push(count);
     }
-    for (f0, f1, x0, x1) in runs {
+    for w in fixed.windows(2) {
+        let (f0, f1) = (w[0], w[1]);
         let k = f1 - f0 - 1;
+        let (x0, x1) = (at(entries, f0), at(entries, f1));
         if k == 0 || (x1 - x0) / ((k + 1) as f64) < gap {
             continue;
         }
-        let at = |i: usize| {
-            if i >= count {
-                length + get(&entries[i - count]).0
-            } else {
-                get(&entries[i]).0
-            }
-        };
-        if (f0..f1).all(|i| at(i + 1) - at(i) >= gap) {
+        if (f0..f1).all(|i| at(entries, i + 1) - at(entries, i) >= gap) {
             continue;
         }
         for r in 1..=k {
-            let x = x0 + (x1 - x0) * r as f64 / (k + 1) as f64;
-            let i = f0 + r;
-            if i >= count {
-                set(&mut entries[i - count], x - length);
-            } else {
-                set(&mut entries[i], x);
-            }
+            set(
+                &mut entries[f0 + r],
+                x0 + (x1 - x0) * r as f64 / (k + 1) as f64,
+            );
         }
     }
 }

@@ -66,7 +66,14 @@ fn check_pair(pair: &CurvePair, src: &[Point], tgt: &[Point], tol: &Tolerances) 
     for q in tgt {
         assert!(pair.target.contains(q), "target vertex {q} lost");
     }
-    // Shape preserved: the result's length equals the original's (all points lie on it).
+    // Shape preserved: every result point lies on the original polyline, and (with every original
+    // vertex present) the result's length equals the original's.
+    for (res, orig) in [(&pair.source, src), (&pair.target, tgt)] {
+        let line = Polyline::new(orig.to_vec(), pair.closed);
+        for q in res.iter() {
+            assert!(line.project(*q).0 <= tol.snap, "{q} is off the curve");
+        }
+    }
     let closed = pair.closed;
     assert!((polyline_length(&pair.source, closed) - polyline_length(src, closed)).abs() < 1e-9);
     assert!((polyline_length(&pair.target, closed) - polyline_length(tgt, closed)).abs() < 1e-9);
@@ -535,4 +542,35 @@ fn a_tiny_part_pinned_to_a_long_one_keeps_its_points_apart() {
     .unwrap();
     check_pair(&pair, &src, &tgt, &tol);
     assert_eq!(pair.salient.len(), 4);
+}
+
+#[test]
+fn a_similar_copy_corresponds_vertex_to_vertex_even_half_turned() {
+    let tol = tol();
+    let radii = [2.0, 1.1, 2.6, 0.9, 1.8, 1.7, 0.6, 2.9, 1.2, 1.5, 2.2, 0.8];
+    let src = star(p(5., 5.), &radii, 0.2, false);
+    // Turned by 170°, scaled by 0.7, moved, and started at another vertex.
+    let (c, s) = (
+        170f64.to_radians().cos() * 0.7,
+        170f64.to_radians().sin() * 0.7,
+    );
+    let map = |q: Point| p(c * q.x - s * q.y + 1.0, s * q.x + c * q.y + 9.0);
+    let mut tgt: Vec<Point> = src.iter().map(|&q| map(q)).collect();
+    tgt.rotate_left(7);
+    let pair = correspond(
+        &curve("boundary", true, src.clone()),
+        &curve("boundary", true, tgt.clone()),
+        &[],
+        &tol,
+        &CorrespondenceOptions::default(),
+    )
+    .unwrap();
+    check_pair(&pair, &src, &tgt, &tol);
+    for (a, b) in pair.source.iter().zip(&pair.target) {
+        assert!(
+            map(*a).distance(*b) < 1e-9,
+            "{a} went to {b}, not {}",
+            map(*a)
+        );
+    }
 }
