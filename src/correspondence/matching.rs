@@ -9,7 +9,8 @@
 //!
 //! A closed curve without anchors has no natural start, so the match is cyclic: every allowed
 //! pair is tried as the start, positions are measured from it, and the rest is matched as one
-//! span ending back at the start.
+//! span ending back at the start. That is O(n²·m²) for n and m salient points, bounded by
+//! [`CorrespondenceOptions::max_salient`] (32 × 32 points: about a million table cells).
 
 use super::salient::Salient;
 use super::CorrespondenceOptions;

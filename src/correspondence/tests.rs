@@ -469,6 +469,15 @@ fn timing() {
         pair.salient.len(),
         t.elapsed()
     );
+    let c = curve("boundary", true, ellipse(5000, 3.0, 3.0, 0.0, p(5., 5.)));
+    let e = curve("boundary", true, ellipse(6000, 4.0, 2.0, 0.5, p(5., 5.)));
+    let t = std::time::Instant::now();
+    let round = correspond(&c, &e, &[], &tol, &opts).unwrap();
+    println!(
+        "5000 ↔ 6000 vertices (circle ↔ ellipse: the circle has no salient point): {} pairs, {:?}",
+        round.source.len(),
+        t.elapsed()
+    );
 }
 
 /// Random open polylines in the drawing's box; `tiny` repeats some points a hair away.
