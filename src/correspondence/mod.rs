@@ -1,4 +1,4 @@
-//! Vertex correspondence between a source curve and its target twin (§3, after [15]).
+//! Vertex correspondence between a source curve and its target twin (§3, after \[15\]).
 //!
 //! Salient points (curvature extrema at a scale) are detected on both curves and associated by an
 //! order-preserving dynamic-programming match (cyclic for closed curves); anchors override the
@@ -6,9 +6,31 @@
 //! normalized arc length so that both curves get the same vertex count, every original flattened
 //! vertex of each curve is kept (so no shape detail is lost), and no edge is longer than the
 //! density allows.
+//!
+//! | file | step |
+//! |---|---|
+//! | `measure.rs` | arc-length measurement of a polyline: sample, project, insert, re-start |
+//! | `orientation.rs` | counter-clockwise closed curves; direction of open targets; best start |
+//! | `salient.rs` | salient point detection (turning over an arc-length window) |
+//! | `matching.rs` | order-preserving association by dynamic programming (cyclic when closed) |
+//! | `resample.rs` | distribution of vertices between associated points |
 
+mod matching;
+mod measure;
+mod orientation;
+mod resample;
+mod salient;
+#[cfg(test)]
+mod tests;
+
+use crate::drawing::{ControlCurve, Controls};
 use crate::geometry::Point;
 use crate::mesh::CurveKind;
+use crate::tolerance::{Tolerances, MAX_COORDINATE};
+use crate::{Error, Result};
+use matching::Mark;
+use measure::Polyline;
+use salient::Salient;
 
 /// A source curve and its target twin with equal vertex counts: `source[i]` corresponds to
 /// `target[i]`.
@@ -24,6 +46,499 @@ pub struct CurvePair {
     pub source: Vec<Point>,
     /// Target vertices, same count, corresponding one to one.
     pub target: Vec<Point>,
-    /// Indices (into both vertex lists) of the associated salient points and anchors.
+    /// Indices (into both vertex lists) of the associated pairs: matched salient points, anchors,
+    /// and an open curve's end points; a closed curve's first pair is index 0.
     pub salient: Vec<usize>,
+}
+
+/// Settings of the vertex correspondence. Construct with [`Default`] and the `with_*` setters.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct CorrespondenceOptions {
+    /// Extra vertex density along curves on top of the one `Tolerances` carries: edges are at
+    /// most `tol.max_edge / density` long. Default: `1.0`.
+    pub density: f64,
+    /// Half-width `h` of the window over which the turning at a vertex is measured, as a
+    /// fraction of the curve's length (the detection scale of salient points; clamped to at most
+    /// `0.25`). Default: `0.03`.
+    pub window_fraction: f64,
+    /// Smallest turning (degrees) over the window for a vertex to be salient. Default: `25.0`.
+    pub salient_angle_deg: f64,
+    /// Smallest angle (degrees) between a vertex's two edges for it to count as a sharp corner
+    /// even when the window smooths it out. Default: `60.0`.
+    pub corner_angle_deg: f64,
+    /// Most salient points kept per curve (the strongest). Default: `32`.
+    pub max_salient: usize,
+    /// Cost of leaving a salient point unmatched, in units of normalized arc length: points
+    /// further apart than about twice this are never paired. Default: `0.1`.
+    pub skip_cost: f64,
+    /// Weight of the turning difference (as a fraction of π) against the position difference in
+    /// the pairing cost. Default: `0.25`.
+    pub angle_weight: f64,
+    /// Largest ratio between the turnings of two paired salient points. Default: `3.0`.
+    pub max_turning_ratio: f64,
+    /// A source vertex and a target vertex closer than this fraction of the longest edge (after
+    /// mapping into each other's curve) become one vertex pair instead of two. Default: `0.2`.
+    pub merge_fraction: f64,
+    /// Farthest an anchor may be from the curve it pins, as a fraction of the drawing's
+    /// diagonal. Default: `0.02`.
+    pub anchor_reach: f64,
+}
+
+impl Default for CorrespondenceOptions {
+    fn default() -> Self {
+        CorrespondenceOptions {
+            density: 1.0,
+            window_fraction: 0.03,
+            salient_angle_deg: 25.0,
+            corner_angle_deg: 60.0,
+            max_salient: 32,
+            skip_cost: 0.1,
+            angle_weight: 0.25,
+            max_turning_ratio: 3.0,
+            merge_fraction: 0.2,
+            anchor_reach: 0.02,
+        }
+    }
+}
+
+impl CorrespondenceOptions {
+    /// Sets [`CorrespondenceOptions::density`].
+    pub fn with_density(mut self, density: f64) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// Sets [`CorrespondenceOptions::window_fraction`].
+    pub fn with_window_fraction(mut self, fraction: f64) -> Self {
+        self.window_fraction = fraction;
+        self
+    }
+
+    /// Sets [`CorrespondenceOptions::salient_angle_deg`].
+    pub fn with_salient_angle_deg(mut self, degrees: f64) -> Self {
+        self.salient_angle_deg = degrees;
+        self
+    }
+
+    /// Sets [`CorrespondenceOptions::anchor_reach`].
+    pub fn with_anchor_reach(mut self, fraction: f64) -> Self {
+        self.anchor_reach = fraction;
+        self
+    }
+
+    /// The longest edge allowed with tolerances `tol`.
+    fn max_edge(&self, tol: &Tolerances) -> f64 {
+        let density = if self.density.is_finite() && self.density > 0.0 {
+            self.density
+        } else {
+            1.0
+        };
+        tol.max_edge / density
+    }
+}
+
+/// Placeholder file names: stages below [`correspond_all`] do not know the files.
+const SRC: &str = "<source>";
+const TGT: &str = "<target>";
+const BOTH: &str = "<source> and <target>";
+
+/// Vertex correspondence for every curve of a pair of drawings (§3): the boundary first, then
+/// the features in name order.
+///
+/// Features are matched by name and anchors by name; each source anchor pins the curve nearest to
+/// it, and its twin pins that curve's twin. Errors name the file and the element: a feature or
+/// anchor in one file only, a degenerate curve (fewer than two distinct points, zero length, a
+/// closed curve with fewer than three points or no area), an anchor farther than
+/// [`CorrespondenceOptions::anchor_reach`] from every curve (or from its curve's twin).
+/// `tol` is the common tolerance of the two drawings (built from the larger diagonal).
+pub fn correspond_all(
+    src_file: &str,
+    src: &Controls,
+    tgt_file: &str,
+    tgt: &Controls,
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+) -> Result<Vec<CurvePair>> {
+    let twin_of = |f: &ControlCurve, others: &[ControlCurve]| {
+        others.iter().find(|g| g.name == f.name).cloned()
+    };
+    let mut curves: Vec<(&ControlCurve, &ControlCurve)> = vec![(&src.boundary, &tgt.boundary)];
+    for f in &src.features {
+        if twin_of(f, &tgt.features).is_none() {
+            return Err(missing(&f.id, src_file, tgt_file));
+        }
+    }
+    for f in &tgt.features {
+        if twin_of(f, &src.features).is_none() {
+            return Err(missing(&f.id, tgt_file, src_file));
+        }
+    }
+    for f in &src.features {
+        if let Some(g) = tgt.features.iter().find(|g| g.name == f.name) {
+            curves.push((f, g));
+        }
+    }
+    // Validate every curve first, so that a degenerate one is reported as such.
+    let mut lines: Vec<(Polyline, Polyline)> = Vec::with_capacity(curves.len());
+    for (s, t) in &curves {
+        let a = clean(s, tol).map_err(|e| e.in_file(src_file))?;
+        let b = clean(t, tol).map_err(|e| e.in_file(tgt_file))?;
+        lines.push((Polyline::new(a, s.closed), Polyline::new(b, t.closed)));
+    }
+    let reach = opts.anchor_reach * tol.diagonal;
+    let mut pins: Vec<Vec<(Point, Point)>> = vec![Vec::new(); curves.len()];
+    for a in &src.anchors {
+        let twin = tgt
+            .anchors
+            .iter()
+            .find(|b| b.name == a.name)
+            .ok_or_else(|| {
+                Error::at(src_file, &a.id, format!("has no twin in {tgt_file}"))
+                    .with_hint(format!("add {} to {tgt_file} or remove it", a.id))
+            })?;
+        let mut best = (f64::INFINITY, 0);
+        for (k, (line, _)) in lines.iter().enumerate() {
+            let d = line.project(a.point).0;
+            if d < best.0 {
+                best = (d, k);
+            }
+        }
+        if best.0.is_nan() || best.0 > reach {
+            return Err(Error::at(
+                src_file,
+                &a.id,
+                format!("is farther than {reach:.4} from every boundary and feature curve"),
+            )
+            .with_hint("place the anchor on the curve it should pin"));
+        }
+        let k = best.1;
+        let d = lines[k].1.project(twin.point).0;
+        if d.is_nan() || d > reach {
+            return Err(Error::at(
+                tgt_file,
+                &twin.id,
+                format!(
+                    "is farther than {reach:.4} from {}, the curve its twin pins",
+                    curves[k].1.id
+                ),
+            )
+            .with_hint("place the anchor on the same curve in both files"));
+        }
+        pins[k].push((a.point, twin.point));
+    }
+    for b in &tgt.anchors {
+        if !src.anchors.iter().any(|a| a.name == b.name) {
+            return Err(
+                Error::at(tgt_file, &b.id, format!("has no twin in {src_file}"))
+                    .with_hint(format!("add {} to {src_file} or remove it", b.id)),
+            );
+        }
+    }
+    curves
+        .iter()
+        .zip(&pins)
+        .map(|((s, t), p)| {
+            correspond(s, t, p, tol, opts).map_err(|e| name_files(e, src_file, tgt_file))
+        })
+        .collect()
+}
+
+fn missing(id: &str, here: &str, there: &str) -> Error {
+    Error::at(here, id, format!("{id} is in {here} but not in {there}"))
+        .with_hint(format!("add {id} to {there} or remove it from {here}"))
+}
+
+/// Replaces the placeholder file names of an input error with the real ones.
+fn name_files(err: Error, src_file: &str, tgt_file: &str) -> Error {
+    match err {
+        Error::Input(mut e) => {
+            e.file = e.file.replace(SRC, src_file).replace(TGT, tgt_file);
+            Error::Input(e)
+        }
+        other => other,
+    }
+}
+
+/// Vertex correspondence for one curve pair (§3, after \[15\]).
+///
+/// 1. Orientation: closed curves are made counter-clockwise; an open target is reversed when
+///    that fits the source better (anchors decide when there are two or more, else a best-fit
+///    similarity of arc-length resamplings).
+/// 2. Anchors (`(source point, target point)`, already assigned to this curve) become forced
+///    pairs at their nearest points, inserted as vertices.
+/// 3. Salient points (curvature extrema at a scale) are associated by an order-preserving
+///    dynamic-programming match between consecutive forced pairs — cyclic for a closed curve
+///    without anchors, whose start then is the first associated pair.
+/// 4. Between associated points both curves get the same number of vertices, each keeping all
+///    of its own, with no edge longer than the density allows.
+///
+/// Errors use the file placeholders `<source>` / `<target>` (see [`Error::in_file`]).
+pub fn correspond(
+    src: &ControlCurve,
+    tgt: &ControlCurve,
+    anchors: &[(Point, Point)],
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+) -> Result<CurvePair> {
+    let a = clean(src, tol).map_err(|e| e.in_file(SRC))?;
+    let b = clean(tgt, tol).map_err(|e| e.in_file(TGT))?;
+    if src.closed != tgt.closed {
+        return Err(Error::at(
+            BOTH,
+            &src.id,
+            "is closed in one file and open in the other",
+        ));
+    }
+    if let Some((p, q)) = anchors
+        .iter()
+        .find(|(p, q)| !p.is_finite() || !q.is_finite())
+    {
+        return Err(Error::at(
+            BOTH,
+            &src.id,
+            format!("has an anchor out of range ({p} ↦ {q})"),
+        ));
+    }
+    let closed = src.closed;
+    let mut sp = Polyline::new(a, closed);
+    let mut tp = Polyline::new(b, closed);
+    if closed {
+        sp = orientation::counter_clockwise(sp);
+        tp = orientation::counter_clockwise(tp);
+    }
+    let project = |sp: &Polyline, tp: &Polyline| -> Vec<(f64, f64)> {
+        anchors
+            .iter()
+            .map(|&(p, q)| (sp.project(p).1, tp.project(q).1))
+            .collect()
+    };
+    if !closed {
+        let pins = project(&sp, &tp);
+        let reverse = match anchor_direction(&pins) {
+            Some(r) => r,
+            None => orientation::open_target_reversed(&sp, &tp),
+        };
+        if reverse {
+            tp = tp.reversed();
+        }
+    }
+    let mut pins = project(&sp, &tp);
+    pins.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    let snap = tol.snap;
+    let (sp2, src_idx) = sp.with_vertices_at(&pins.iter().map(|p| p.0).collect::<Vec<_>>(), snap);
+    let (tp2, tgt_idx) = tp.with_vertices_at(&pins.iter().map(|p| p.1).collect::<Vec<_>>(), snap);
+    let (mut sp, mut tp) = (sp2, tp2);
+    let mut forced: Vec<(usize, usize)> = src_idx.into_iter().zip(tgt_idx).collect();
+    let pairs = if closed && forced.is_empty() {
+        cyclic_pairs(&mut sp, &mut tp, opts)
+    } else {
+        if closed {
+            let (i, j) = forced[0];
+            sp = sp.rotated(i);
+            tp = tp.rotated(j);
+            let (n, m) = (sp.len(), tp.len());
+            for f in &mut forced {
+                *f = ((f.0 + n - i) % n, (f.1 + m - j) % m);
+            }
+        } else {
+            forced.insert(0, (0, 0));
+            forced.push((sp.len() - 1, tp.len() - 1));
+        }
+        forced.dedup();
+        if forced
+            .windows(2)
+            .any(|w| w[1].0 <= w[0].0 || w[1].1 <= w[0].1)
+        {
+            return Err(Error::at(
+                BOTH,
+                &src.id,
+                "its anchors are in a different order along the curve in the two files",
+            )
+            .with_hint("check the anchor names, or remove crossing anchors"));
+        }
+        spans_pairs(&sp, &tp, &forced, opts)
+    };
+    let (source, target, salient) = resample::distribute(
+        &sp,
+        &tp,
+        &pairs,
+        opts.max_edge(tol),
+        opts.merge_fraction * opts.max_edge(tol),
+        snap,
+    )
+    .map_err(|e| match e {
+        Error::Input(mut ie) => {
+            ie.element = Some(src.id.clone());
+            Error::Input(ie)
+        }
+        other => other,
+    })?;
+    Ok(CurvePair {
+        id: src.id.clone(),
+        kind: src.kind,
+        closed,
+        source,
+        target,
+        salient,
+    })
+}
+
+/// Whether anchors say the open target runs backwards: `Some(true)` when more anchor pairs are
+/// in the opposite order than in the same order, `None` when they do not tell (fewer than two).
+fn anchor_direction(pins: &[(f64, f64)]) -> Option<bool> {
+    let (mut same, mut opposite) = (0usize, 0usize);
+    for i in 0..pins.len() {
+        for j in i + 1..pins.len() {
+            let d = (pins[j].0 - pins[i].0) * (pins[j].1 - pins[i].1);
+            if d > 0.0 {
+                same += 1;
+            } else if d < 0.0 {
+                opposite += 1;
+            }
+        }
+    }
+    (same != opposite).then_some(opposite > same)
+}
+
+/// Salient-point association between consecutive forced pairs (rotated so the first is `(0, 0)`
+/// on a closed curve): the forced pairs plus the matched salient points, in order.
+fn spans_pairs(
+    sp: &Polyline,
+    tp: &Polyline,
+    forced: &[(usize, usize)],
+    opts: &CorrespondenceOptions,
+) -> Vec<(usize, usize)> {
+    let ss = salient::detect(sp, opts);
+    let ts = salient::detect(tp, opts);
+    let (hs, ht) = (salient::window(sp, opts), salient::window(tp, opts));
+    let mut ends: Vec<(usize, usize, f64, f64)> = forced
+        .iter()
+        .map(|&(a, b)| (a, b, sp.s(a), tp.s(b)))
+        .collect();
+    if sp.closed() {
+        ends.push((sp.len(), tp.len(), sp.length(), tp.length()));
+    }
+    let mut pairs = Vec::new();
+    for w in ends.windows(2) {
+        let ((a0, b0, s0, t0), (a1, b1, s1, t1)) = (w[0], w[1]);
+        pairs.push((a0, b0));
+        // Salient points closer than the window to a forced pair are suppressed by it, as a
+        // weaker extremum is by a stronger one.
+        let inside = |pts: &[Salient],
+                      lo: usize,
+                      hi: usize,
+                      x0: f64,
+                      x1: f64,
+                      h: f64|
+         -> (Vec<usize>, Vec<Mark>) {
+            pts.iter()
+                .filter(|p| p.index > lo && p.index < hi && p.s - x0 >= h && x1 - p.s >= h)
+                .map(|p| {
+                    (
+                        p.index,
+                        Mark {
+                            u: (p.s - x0) / (x1 - x0),
+                            turning: p.turning,
+                        },
+                    )
+                })
+                .unzip()
+        };
+        let (si, sm) = inside(&ss, a0, a1, s0, s1, hs);
+        let (ti, tm) = inside(&ts, b0, b1, t0, t1, ht);
+        let (_, matched) = matching::associate_span(&sm, &tm, opts);
+        pairs.extend(matched.into_iter().map(|(x, y)| (si[x], ti[y])));
+    }
+    if !sp.closed() {
+        if let Some(&last) = forced.last() {
+            pairs.push(last);
+        }
+    }
+    pairs
+}
+
+/// Cyclic association of a closed pair without anchors. Re-starts both curves at the first
+/// associated pair and returns the pairs; without any associable salient point, the target is
+/// re-started where it fits the source best ([`orientation::best_closed_start`]).
+///
+/// Among equally cheap matches (a square and a rotated square), the one whose matched points fit
+/// by scale and translation alone best wins: the correspondence that needs the least turning.
+fn cyclic_pairs(
+    sp: &mut Polyline,
+    tp: &mut Polyline,
+    opts: &CorrespondenceOptions,
+) -> Vec<(usize, usize)> {
+    let ss = salient::detect(sp, opts);
+    let ts = salient::detect(tp, opts);
+    let found = matching::associate_cyclic(&ss, sp.length(), &ts, tp.length(), opts);
+    let chosen = found
+        .iter()
+        .map(|pairs| {
+            let a: Vec<Point> = pairs
+                .iter()
+                .map(|&(x, _)| sp.points()[ss[x].index])
+                .collect();
+            let b: Vec<Point> = pairs
+                .iter()
+                .map(|&(_, y)| tp.points()[ts[y].index])
+                .collect();
+            (orientation::unrotated_residual(&a, &b), pairs)
+        })
+        .fold(None::<(f64, &Vec<(usize, usize)>)>, |best, c| match best {
+            Some(b) if b.0 <= c.0 => Some(b),
+            _ => Some(c),
+        });
+    let Some((_, pairs)) = chosen else {
+        let j = orientation::best_closed_start(sp, tp);
+        *tp = tp.rotated(j);
+        return vec![(0, 0)];
+    };
+    let (i, j) = (ss[pairs[0].0].index, ts[pairs[0].1].index);
+    let (n, m) = (sp.len(), tp.len());
+    let out = pairs
+        .iter()
+        .map(|&(x, y)| ((ss[x].index + n - i) % n, (ts[y].index + m - j) % m))
+        .collect();
+    *sp = sp.rotated(i);
+    *tp = tp.rotated(j);
+    out
+}
+
+/// A curve's points checked and cleaned: finite and within range, consecutive points closer than
+/// the snap tolerance merged (and a closed curve's repeated first point dropped); errors for a
+/// degenerate curve, located at its id (file left to the caller).
+fn clean(curve: &ControlCurve, tol: &Tolerances) -> Result<Vec<Point>> {
+    let err = |problem: String| Error::at("", &curve.id, problem);
+    if let Some(p) = curve
+        .points
+        .iter()
+        .find(|p| !p.is_finite() || p.abs().max_element() > MAX_COORDINATE)
+    {
+        return Err(err(format!("has a point out of range ({}, {})", p.x, p.y)));
+    }
+    let mut pts: Vec<Point> = Vec::with_capacity(curve.points.len());
+    for &p in &curve.points {
+        if pts.last().is_none_or(|q| q.distance(p) > tol.snap) {
+            pts.push(p);
+        }
+    }
+    if curve.closed {
+        while pts.len() > 1 && pts[pts.len() - 1].distance(pts[0]) <= tol.snap {
+            pts.pop();
+        }
+    }
+    if pts.len() < 2 {
+        return Err(err("has fewer than 2 distinct points".into()));
+    }
+    if curve.closed && pts.len() < 3 {
+        return Err(err("is closed but has fewer than 3 distinct points".into()));
+    }
+    if crate::geometry::polyline_length(&pts, curve.closed) <= tol.snap {
+        return Err(err("has zero length".into()));
+    }
+    if curve.closed && crate::geometry::polygon_area(&pts).abs() <= tol.snap * tol.diagonal {
+        return Err(err("is closed but encloses no area".into()));
+    }
+    Ok(pts)
 }

@@ -1,0 +1,221 @@
+//! Association of salient points (§3, after \[15\]): an order-preserving match of source salient
+//! points to target salient points by dynamic programming, allowing points to stay unmatched.
+//!
+//! Within a span (between two forced pairs: end points, anchors), each salient point has a
+//! normalized arc-length position `u ∈ (0, 1)`. Pairing source point `a` with target point `b`
+//! costs `|u_a − u_b| + angle_weight · |θ_a − θ_b| / π` (θ the signed turning), and is only
+//! allowed when the turnings have the same sign and sizes within a factor `max_turning_ratio`.
+//! Leaving a point unmatched costs `skip_cost`. The match of least total cost is kept.
+//!
+//! A closed curve without anchors has no natural start, so the match is cyclic: every allowed
+//! pair is tried as the start, positions are measured from it, and the rest is matched as one
+//! span ending back at the start. That is O(n²·m²) for n and m salient points, bounded by
+//! [`CorrespondenceOptions::max_salient`] (32 × 32 points: about a million table cells).
+
+use super::salient::Salient;
+use super::CorrespondenceOptions;
+
+/// A salient point reduced to what the association looks at.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Mark {
+    /// Normalized position in the span, in `[0, 1]`.
+    pub(crate) u: f64,
+    /// Signed turning angle (radians).
+    pub(crate) turning: f64,
+}
+
+/// The cost of pairing `a` with `b`, or `None` when they may not be paired.
+fn pair_cost(a: Mark, b: Mark, opts: &CorrespondenceOptions) -> Option<f64> {
+    if a.turning * b.turning <= 0.0 {
+        return None;
+    }
+    let (lo, hi) = {
+        let (x, y) = (a.turning.abs(), b.turning.abs());
+        (x.min(y), x.max(y))
+    };
+    if hi > lo * opts.max_turning_ratio.max(1.0) {
+        return None;
+    }
+    Some(
+        (a.u - b.u).abs()
+            + opts.angle_weight * (a.turning - b.turning).abs() / std::f64::consts::PI,
+    )
+}
+
+/// The least-cost order-preserving match between `src` and `tgt` (each sorted by `u`): its total
+/// cost (pairs plus skipped points) and the matched `(source, target)` index pairs, in order.
+pub(crate) fn associate_span(
+    src: &[Mark],
+    tgt: &[Mark],
+    opts: &CorrespondenceOptions,
+) -> (f64, Vec<(usize, usize)>) {
+    let (n, m) = (src.len(), tgt.len());
+    let skip = opts.skip_cost;
+    let w = m + 1;
+    // cost[a*w + b]: best cost of matching src[..a] with tgt[..b]; step records the move.
+    let mut cost = vec![0.0; (n + 1) * w];
+    let mut step = vec![0u8; (n + 1) * w];
+    for a in 0..=n {
+        for b in 0..=m {
+            if a == 0 && b == 0 {
+                continue;
+            }
+            let mut best = f64::INFINITY;
+            let mut mv = 0u8;
+            if a > 0 && b > 0 {
+                if let Some(c) = pair_cost(src[a - 1], tgt[b - 1], opts) {
+                    best = cost[(a - 1) * w + b - 1] + c;
+                    mv = 1;
+                }
+            }
+            if a > 0 && cost[(a - 1) * w + b] + skip < best {
+                best = cost[(a - 1) * w + b] + skip;
+                mv = 2;
+            }
+            if b > 0 && cost[a * w + b - 1] + skip < best {
+                best = cost[a * w + b - 1] + skip;
+                mv = 3;
+            }
+            cost[a * w + b] = best;
+            step[a * w + b] = mv;
+        }
+    }
+    let mut pairs = Vec::new();
+    let (mut a, mut b) = (n, m);
+    while a > 0 || b > 0 {
+        match step[a * w + b] {
+            1 => {
+                pairs.push((a - 1, b - 1));
+                a -= 1;
+                b -= 1;
+            }
+            2 => a -= 1,
+            _ => b -= 1,
+        }
+    }
+    pairs.reverse();
+    (cost[n * w + m], pairs)
+}
+
+/// Candidate cyclic matches of two closed curves' salient points (lengths `src_len`,
+/// `tgt_len`): every match whose cost is within a hair of the least, each as matched
+/// `(source, target)` index pairs starting with its start pair. Empty when no pair is allowed.
+pub(crate) fn associate_cyclic(
+    src: &[Salient],
+    src_len: f64,
+    tgt: &[Salient],
+    tgt_len: f64,
+    opts: &CorrespondenceOptions,
+) -> Vec<Vec<(usize, usize)>> {
+    let (n, m) = (src.len(), tgt.len());
+    let marks = |pts: &[Salient], len: f64, start: usize| -> Vec<Mark> {
+        let s0 = pts[start].s;
+        (1..pts.len())
+            .map(|k| {
+                let q = pts[(start + k) % pts.len()];
+                Mark {
+                    u: (q.s - s0).rem_euclid(len) / len,
+                    turning: q.turning,
+                }
+            })
+            .collect()
+    };
+    let mut found: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
+    for i in 0..n {
+        let a = marks(src, src_len, i);
+        let head = Mark {
+            u: 0.0,
+            turning: src[i].turning,
+        };
+        for j in 0..m {
+            let Some(c0) = pair_cost(
+                head,
+                Mark {
+                    u: 0.0,
+                    turning: tgt[j].turning,
+                },
+                opts,
+            ) else {
+                continue;
+            };
+            let b = marks(tgt, tgt_len, j);
+            let (c, rest) = associate_span(&a, &b, opts);
+            let mut pairs = vec![(i, j)];
+            pairs.extend(
+                rest.into_iter()
+                    .map(|(x, y)| ((i + 1 + x) % n, (j + 1 + y) % m)),
+            );
+            found.push((c0 + c, pairs));
+        }
+    }
+    let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
+    let limit = best + 1e-9 * (1.0 + best.abs());
+    found
+        .into_iter()
+        .filter(|f| f.0 <= limit)
+        .map(|f| f.1)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mk(u: f64, deg: f64) -> Mark {
+        Mark {
+            u,
+            turning: deg.to_radians(),
+        }
+    }
+
+    #[test]
+    fn span_match_pairs_near_points_of_like_turning() {
+        let opts = CorrespondenceOptions::default();
+        let src = [mk(0.2, 90.), mk(0.5, -60.), mk(0.8, 90.)];
+        let tgt = [mk(0.25, 80.), mk(0.55, 70.), mk(0.82, 100.)];
+        let (_, pairs) = associate_span(&src, &tgt, &opts);
+        // The reflex source point has no partner; the middle target point stays unmatched too.
+        assert_eq!(pairs, vec![(0, 0), (2, 2)]);
+        let (cost, none) = associate_span(&src, &[], &opts);
+        assert!(none.is_empty());
+        assert!((cost - 3.0 * opts.skip_cost).abs() < 1e-12);
+    }
+
+    #[test]
+    fn span_match_never_crosses() {
+        let opts = CorrespondenceOptions::default();
+        // The allowed pairs (a convex and a reflex one) cross: only one of them can be kept.
+        let src = [mk(0.2, 90.), mk(0.3, -90.)];
+        let tgt = [mk(0.2, -90.), mk(0.3, 90.)];
+        let (_, pairs) = associate_span(&src, &tgt, &opts);
+        assert_eq!(pairs.len(), 1);
+    }
+
+    #[test]
+    fn cyclic_match_finds_the_rectangle_corners() {
+        let opts = CorrespondenceOptions::default();
+        let q = std::f64::consts::FRAC_PI_2;
+        // A 2×1 rectangle (length 6) and the same rectangle started at its second corner.
+        let rect = |offs: [f64; 4]| -> Vec<Salient> {
+            offs.iter()
+                .enumerate()
+                .map(|(k, &s)| Salient {
+                    index: k,
+                    s,
+                    turning: q,
+                })
+                .collect()
+        };
+        let src = rect([0.0, 2.0, 3.0, 5.0]);
+        let tgt = rect([0.0, 1.0, 3.0, 4.0]);
+        let found = associate_cyclic(&src, 6.0, &tgt, 6.0, &opts);
+        assert!(!found.is_empty());
+        for pairs in &found {
+            assert_eq!(pairs.len(), 4);
+            // Long sides start at source corners 0 and 2 and at target corners 1 and 3.
+            for &(a, b) in pairs {
+                assert_eq!(a % 2, (b + 1) % 2);
+            }
+        }
+    }
+}
