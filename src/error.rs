@@ -60,7 +60,11 @@ impl Error {
     }
 
     /// An input error in `file` at the element with id `element`.
-    pub fn at(file: impl Into<String>, element: impl Into<String>, problem: impl Into<String>) -> Self {
+    pub fn at(
+        file: impl Into<String>,
+        element: impl Into<String>,
+        problem: impl Into<String>,
+    ) -> Self {
         Error::Input(InputError {
             file: file.into(),
             element: Some(element.into()),
@@ -103,9 +107,13 @@ mod tests {
 
     #[test]
     fn input_error_is_one_line_with_file_element_and_hint() {
-        let e = Error::at("a.svg", "boundary", "is not closed").with_hint("close the path with 'z'");
+        let e =
+            Error::at("a.svg", "boundary", "is not closed").with_hint("close the path with 'z'");
         let s = e.to_string();
-        assert_eq!(s, "a.svg: element 'boundary': is not closed (hint: close the path with 'z')");
+        assert_eq!(
+            s,
+            "a.svg: element 'boundary': is not closed (hint: close the path with 'z')"
+        );
         assert!(!s.contains('\n'));
         assert!(e.is_input());
         assert!(!Error::internal("x").is_input());

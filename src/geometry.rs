@@ -106,7 +106,11 @@ pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
 pub fn point_segment_distance(p: Point, a: Point, b: Point) -> (f64, f64) {
     let ab = b - a;
     let len2 = ab.length_squared();
-    let u = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let u = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (p.distance(a + ab * u), u)
 }
 
@@ -171,13 +175,38 @@ mod tests {
 
     #[test]
     fn segment_intersection_cases() {
-        assert!(segments_intersect(p(0., 0.), p(2., 2.), p(0., 2.), p(2., 0.)));
-        assert!(!segments_intersect(p(0., 0.), p(1., 0.), p(0., 1.), p(1., 1.)));
+        assert!(segments_intersect(
+            p(0., 0.),
+            p(2., 2.),
+            p(0., 2.),
+            p(2., 0.)
+        ));
+        assert!(!segments_intersect(
+            p(0., 0.),
+            p(1., 0.),
+            p(0., 1.),
+            p(1., 1.)
+        ));
         // touching at an end point counts
-        assert!(segments_intersect(p(0., 0.), p(1., 0.), p(1., 0.), p(1., 1.)));
+        assert!(segments_intersect(
+            p(0., 0.),
+            p(1., 0.),
+            p(1., 0.),
+            p(1., 1.)
+        ));
         // collinear overlap
-        assert!(segments_intersect(p(0., 0.), p(2., 0.), p(1., 0.), p(3., 0.)));
-        assert!(!segments_intersect(p(0., 0.), p(1., 0.), p(2., 0.), p(3., 0.)));
+        assert!(segments_intersect(
+            p(0., 0.),
+            p(2., 0.),
+            p(1., 0.),
+            p(3., 0.)
+        ));
+        assert!(!segments_intersect(
+            p(0., 0.),
+            p(1., 0.),
+            p(2., 0.),
+            p(3., 0.)
+        ));
     }
 
     #[test]

@@ -95,7 +95,8 @@ pub fn sanity_check(m: &CompatibleMeshes, twins: Option<&[Vec<Point>]>, tol: f64
     let mut ok_tris = Vec::with_capacity(m.triangles.len());
     for t in &m.triangles {
         let [a, b, c] = *t;
-        if (a as usize) >= n || (b as usize) >= n || (c as usize) >= n || a == b || b == c || a == c {
+        if (a as usize) >= n || (b as usize) >= n || (c as usize) >= n || a == b || b == c || a == c
+        {
             r.bad_indices += 1;
             continue;
         }
@@ -122,7 +123,10 @@ pub fn sanity_check(m: &CompatibleMeshes, twins: Option<&[Vec<Point>]>, tol: f64
                 continue;
             }
             for (&v, &q) in curve.vertices.iter().zip(twin) {
-                let ok = m.target.get(v as usize).is_some_and(|p| p.distance(q) <= tol);
+                let ok = m
+                    .target
+                    .get(v as usize)
+                    .is_some_and(|p| p.distance(q) <= tol);
                 if !ok {
                     r.curve_mismatches += 1;
                 }
@@ -198,7 +202,10 @@ mod tests {
     #[test]
     fn edges_and_rings() {
         let m = square();
-        assert_eq!(edges(&m.triangles), vec![(0, 1), (0, 2), (0, 3), (1, 2), (2, 3)]);
+        assert_eq!(
+            edges(&m.triangles),
+            vec![(0, 1), (0, 2), (0, 3), (1, 2), (2, 3)]
+        );
         let r = one_rings(&m.triangles, 4);
         assert_eq!(r[0], vec![1, 2, 3]);
         assert_eq!(r[1], vec![0, 2]);

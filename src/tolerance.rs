@@ -37,7 +37,11 @@ impl Tolerances {
     /// Tolerances for a drawing with bounding-box `diagonal`; `density` (default 1.0) scales the
     /// number of vertices per unit length: 2.0 halves the edge lengths.
     pub fn new(diagonal: f64, density: f64) -> Self {
-        let density = if density.is_finite() && density > 0.0 { density } else { 1.0 };
+        let density = if density.is_finite() && density > 0.0 {
+            density
+        } else {
+            1.0
+        };
         let max_edge = diagonal / (40.0 * density);
         Tolerances {
             diagonal,
