@@ -17,6 +17,18 @@ pub(crate) fn subdivided(corners: &[Point], per_side: usize) -> Vec<Point> {
         .collect()
 }
 
+/// A closed polyline through `corners`, each side split into edges no longer than `max_edge`.
+pub(crate) fn resampled(corners: &[Point], max_edge: f64) -> Vec<Point> {
+    let n = corners.len();
+    (0..n)
+        .flat_map(|i| {
+            let (a, b) = (corners[i], corners[(i + 1) % n]);
+            let k = (a.distance(b) / max_edge).ceil().max(1.0) as usize;
+            (0..k).map(move |j| a.lerp(b, j as f64 / k as f64))
+        })
+        .collect()
+}
+
 pub(crate) fn circle(c: Point, r: f64, n: usize) -> Vec<Point> {
     (0..n)
         .map(|k| {

@@ -29,6 +29,20 @@ fn adjacent(k1: usize, k2: usize, m: usize, closed: bool) -> bool {
 /// consecutive edges of one curve — fold back onto each other. Consecutive edges meeting at
 /// their shared vertex are not a crossing.
 pub(crate) fn first_crossing(curves: &[CurveRef<'_>]) -> Option<(EdgeRef, EdgeRef)> {
+    crossings(curves, true).into_iter().next()
+}
+
+/// Every pair of curves `(c1, c2)` with `c1 <= c2` that cross or touch (as in
+/// [`first_crossing`]), sorted.
+pub(crate) fn crossing_curves(curves: &[CurveRef<'_>]) -> Vec<(usize, usize)> {
+    let mut pairs: Vec<(usize, usize)> =
+        crossings(curves, false).into_iter().map(|((c1, _), (c2, _))| (c1, c2)).collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef)> {
     let mut segs: Vec<(EdgeRef, Point, Point)> = Vec::new();
     for (c, &(pts, closed)) in curves.iter().enumerate() {
         let n = pts.len();
@@ -36,7 +50,9 @@ pub(crate) fn first_crossing(curves: &[CurveRef<'_>]) -> Option<(EdgeRef, EdgeRe
             segs.push(((c, k), pts[k], pts[(k + 1) % n]));
         }
     }
-    let (lo, hi) = bounding_box(segs.iter().flat_map(|s| [s.1, s.2]))?;
+    let Some((lo, hi)) = bounding_box(segs.iter().flat_map(|s| [s.1, s.2])) else {
+        return Vec::new();
+    };
     let cells = ((segs.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
     let ext = (hi - lo).max(Point::splat(f64::MIN_POSITIVE));
     let cell_of = |p: Point| {
@@ -65,7 +81,8 @@ pub(crate) fn first_crossing(curves: &[CurveRef<'_>]) -> Option<(EdgeRef, EdgeRe
     }
     pairs.sort_unstable();
     pairs.dedup();
-    pairs.into_iter().find_map(|(s1, s2)| {
+    let mut found = Vec::new();
+    for (s1, s2) in pairs {
         let ((c1, k1), a, b) = segs[s1 as usize];
         let ((c2, k2), c, d) = segs[s2 as usize];
         let hit =
@@ -76,8 +93,14 @@ pub(crate) fn first_crossing(curves: &[CurveRef<'_>]) -> Option<(EdgeRef, EdgeRe
             } else {
                 segments_intersect(a, b, c, d)
             };
-        hit.then_some(((c1, k1), (c2, k2)))
-    })
+        if hit {
+            found.push(((c1, k1), (c2, k2)));
+            if first_only {
+                break;
+            }
+        }
+    }
+    found
 }
 
 /// The first pair of vertices (as `(curve, vertex)` pairs) of different curves, or of one curve,
