@@ -52,14 +52,21 @@ impl Harmonic {
     /// Prepares the solver: `fixed[v]` marks the vertices whose positions are prescribed.
     /// Errors if an index is out of range.
     pub fn new(triangles: &[[u32; 3]], vertex_count: usize, fixed: &[bool]) -> Result<Self> {
-        if fixed.len() != vertex_count || triangles.iter().flatten().any(|&v| v as usize >= vertex_count) {
+        if fixed.len() != vertex_count
+            || triangles
+                .iter()
+                .flatten()
+                .any(|&v| v as usize >= vertex_count)
+        {
             return Err(Error::internal("harmonic map: index out of range"));
         }
         let edges = crate::mesh::edges(triangles);
         let find = |a: u32, b: u32| edges.binary_search(&(a.min(b), a.max(b))).map(|e| e as u32);
         let opposite = triangles
             .iter()
-            .map(|t| [find(t[1], t[2]), find(t[2], t[0]), find(t[0], t[1])].map(|e| e.unwrap_or(NONE)))
+            .map(|t| {
+                [find(t[1], t[2]), find(t[2], t[0]), find(t[0], t[1])].map(|e| e.unwrap_or(NONE))
+            })
             .collect();
         let mut free_index = vec![NONE; vertex_count];
         let mut free_vertices = Vec::new();
@@ -106,8 +113,9 @@ impl Harmonic {
         let pattern = SymbolicSparseColMat::new_checked(nf, nf, col_ptr, None, row_idx);
         let symbolic = if nf > 0 {
             Some(
-                SymbolicLlt::try_new(pattern.as_ref(), Side::Upper)
-                    .map_err(|e| Error::internal(format!("harmonic map: symbolic factorization: {e:?}")))?,
+                SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).map_err(|e| {
+                    Error::internal(format!("harmonic map: symbolic factorization: {e:?}"))
+                })?,
             )
         } else {
             None
@@ -151,13 +159,16 @@ impl Harmonic {
             }
         }
         if self.weights.iter().any(|w| !w.is_finite()) {
-            return Err(Error::internal("harmonic map: degenerate triangle in the metric"));
+            return Err(Error::internal(
+                "harmonic map: degenerate triangle in the metric",
+            ));
         }
         if let Some(llt) = self.factor(&symbolic, None) {
             return self.finish(&llt, out);
         }
         // Numerically indefinite: clamp to a positive floor (a convex-combination map).
-        let mean = self.weights.iter().map(|w| w.abs()).sum::<f64>() / self.weights.len().max(1) as f64;
+        let mean =
+            self.weights.iter().map(|w| w.abs()).sum::<f64>() / self.weights.len().max(1) as f64;
         let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
         log::debug!("harmonic map: cotangent matrix not positive definite, clamping weights");
         let llt = self
@@ -168,7 +179,11 @@ impl Harmonic {
 
     /// Assembles `L_ff` and `−L_fb x_b` (from the fixed entries of `out`… filled in `finish`) and
     /// factors `L_ff`.
-    fn factor(&mut self, symbolic: &SymbolicLlt<usize>, floor: Option<f64>) -> Option<Llt<usize, f64>> {
+    fn factor(
+        &mut self,
+        symbolic: &SymbolicLlt<usize>,
+        floor: Option<f64>,
+    ) -> Option<Llt<usize, f64>> {
         self.values.fill(0.0);
         for (e, &(a, b)) in self.edges.iter().enumerate() {
             let w = match floor {
@@ -231,8 +246,12 @@ mod tests {
     fn reproduces_an_affine_map_exactly() {
         let p = Point::new;
         let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 20);
-        let pairs = vec![pair("boundary", true, sq), pair("feature-o", true, circle(p(6., 5.), 2., 24))];
-        let tri = triangulate(&pairs, &crate::tolerance::Tolerances::new(14.0, 1.0), false).unwrap();
+        let pairs = vec![
+            pair("boundary", true, sq),
+            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
+        ];
+        let tri =
+            triangulate(&pairs, &crate::tolerance::Tolerances::new(14.0, 1.0), false).unwrap();
         let n = tri.points.len();
         let mut fixed = vec![false; n];
         for c in &tri.curves {
@@ -241,12 +260,17 @@ mod tests {
             }
         }
         assert!(fixed.iter().filter(|f| !**f).count() > 50);
-        let affine = |q: Point| Point::new(1.3 * q.x - 0.4 * q.y + 3.0, 0.2 * q.x + 0.7 * q.y - 1.0);
+        let affine =
+            |q: Point| Point::new(1.3 * q.x - 0.4 * q.y + 3.0, 0.2 * q.x + 0.7 * q.y - 1.0);
         let mut h = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
         for _ in 0..2 {
             // free entries start with garbage: they must be overwritten
-            let mut out: Vec<Point> =
-                tri.points.iter().zip(&fixed).map(|(q, &f)| if f { affine(*q) } else { p(1e3, -7.) }).collect();
+            let mut out: Vec<Point> = tri
+                .points
+                .iter()
+                .zip(&fixed)
+                .map(|(q, &f)| if f { affine(*q) } else { p(1e3, -7.) })
+                .collect();
             h.solve(&tri.points, &mut out).unwrap();
             for (q, o) in tri.points.iter().zip(&out) {
                 assert!(affine(*q).distance(*o) < 1e-11, "{} vs {}", affine(*q), o);

@@ -47,12 +47,16 @@ pub struct ShapeModel {
     /// Rigid interpolation of the barycenter mesh; `None` for a single curve or when the
     /// barycenter mesh is degenerate (barycenters then move linearly).
     interpolator: Option<Interpolator>,
+    /// Straight-line vertex interpolation instead of the BSM (see [`ShapeModel::linear`]).
+    linear: bool,
 }
 
 /// Angle of the rotation that best maps the centred point set `a` onto the centred set `b`
 /// (2D Procrustes), in (−π, π].
 fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
-    let (s, c) = a.iter().zip(b).fold((0.0, 0.0), |(s, c), (p, q)| (s + p.perp_dot(*q), c + p.dot(*q)));
+    let (s, c) = a.iter().zip(b).fold((0.0, 0.0), |(s, c), (p, q)| {
+        (s + p.perp_dot(*q), c + p.dot(*q))
+    });
     s.atan2(c)
 }
 
@@ -85,7 +89,9 @@ fn intrinsic(points: &[Point], closed: bool) -> Option<(Vec<f64>, Vec<f64>)> {
     if len.iter().any(|&l| l <= 0.0 || !l.is_finite()) {
         return None;
     }
-    let turn = (1..m).map(|k| turning_angle(edges[k - 1], edges[k])).collect();
+    let turn = (1..m)
+        .map(|k| turning_angle(edges[k - 1], edges[k]))
+        .collect();
     Some((len, turn))
 }
 
@@ -93,7 +99,9 @@ impl CurveModel {
     fn new(id: &str, closed: bool, from: &[Point], to: &[Point]) -> Result<Self> {
         let degenerate = || Error::at("<source> → <target>", id, "has a zero-length edge");
         if from.len() != to.len() || from.len() < 2 {
-            return Err(Error::internal(format!("shape model: curve '{id}' has mismatched vertex lists")));
+            return Err(Error::internal(format!(
+                "shape model: curve '{id}' has mismatched vertex lists"
+            )));
         }
         let (l0, t0) = intrinsic(from, closed).ok_or_else(degenerate)?;
         let (l1, t1) = intrinsic(to, closed).ok_or_else(degenerate)?;
@@ -118,7 +126,9 @@ impl CurveModel {
         let n = self.from.len();
         let m = self.len[0].len();
         let mut dirs: Vec<Point> = Vec::with_capacity(m);
-        let mut lens: Vec<f64> = (0..m).map(|k| (1.0 - t) * self.len[0][k] + t * self.len[1][k]).collect();
+        let mut lens: Vec<f64> = (0..m)
+            .map(|k| (1.0 - t) * self.len[0][k] + t * self.len[1][k])
+            .collect();
         let mut phi = self.start_direction;
         dirs.push(Point::from_angle(phi));
         for k in 1..m {
@@ -163,20 +173,47 @@ impl ShapeModel {
     pub fn new(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
         let mut curves = pairs
             .iter()
-            .map(|p| CurveModel::new(&p.id, p.closed, side_of(p, from_target), side_of(p, !from_target)))
+            .map(|p| {
+                CurveModel::new(
+                    &p.id,
+                    p.closed,
+                    side_of(p, from_target),
+                    side_of(p, !from_target),
+                )
+            })
             .collect::<Result<Vec<_>>>()?;
         let b0: Vec<Point> = curves.iter().map(|c| centroid(&c.from)).collect();
         let b1: Vec<Point> = curves.iter().map(|c| centroid(&c.to)).collect();
-        let scale = bounding_box(curves.iter().flat_map(|c| c.from.iter().chain(&c.to).copied()))
-            .map(|(lo, hi)| lo.distance(hi))
-            .unwrap_or(0.0);
+        let scale = bounding_box(
+            curves
+                .iter()
+                .flat_map(|c| c.from.iter().chain(&c.to).copied()),
+        )
+        .map(|(lo, hi)| lo.distance(hi))
+        .unwrap_or(0.0);
         let interpolator = barycenter_mesh(&b0, &b1, 1e-9 * scale);
         if let Some(ip) = &interpolator {
             for (i, c) in curves.iter_mut().enumerate() {
                 c.rotation = branch_near(c.rotation, ip.rotation_at(i));
             }
         }
-        Ok(ShapeModel { curves, bary: [b0, b1], interpolator })
+        Ok(ShapeModel {
+            curves,
+            bary: [b0, b1],
+            interpolator,
+            linear: false,
+        })
+    }
+
+    /// The straight-line alternative to the BSM (Fig.9(b), left): every curve vertex moves
+    /// linearly. It distorts rotating curves, but keeps curves that translate or shear together
+    /// in place relative to each other, so the composite mapping falls back to it when the BSM
+    /// path folds the mesh.
+    pub fn linear(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
+        let mut m = ShapeModel::new(pairs, from_target)?;
+        m.interpolator = None;
+        m.linear = true;
+        Ok(m)
     }
 
     /// Number of curves.
@@ -200,6 +237,13 @@ impl ShapeModel {
             }
             return;
         }
+        if self.linear {
+            for (o, c) in out.iter_mut().zip(&self.curves) {
+                o.clear();
+                o.extend(c.from.iter().zip(&c.to).map(|(p, q)| p.lerp(*q, t)));
+            }
+            return;
+        }
         let mut centres = vec![Point::ZERO; self.curves.len()];
         match &self.interpolator {
             Some(ip) => {
@@ -207,7 +251,10 @@ impl ShapeModel {
                 ip.at(t, &mut centres, &mut ws);
             }
             None => {
-                for (c, (p, q)) in centres.iter_mut().zip(self.bary[0].iter().zip(&self.bary[1])) {
+                for (c, (p, q)) in centres
+                    .iter_mut()
+                    .zip(self.bary[0].iter().zip(&self.bary[1]))
+                {
                     *c = p.lerp(*q, t);
                 }
             }
@@ -265,19 +312,38 @@ mod tests {
     }
 
     fn scene() -> Vec<CurvePair> {
-        let mut b = pair("boundary", true, subdivided(&[p(0., 0.), p(10., 0.), p(10., 4.), p(0., 4.)], 6));
+        let mut b = pair(
+            "boundary",
+            true,
+            subdivided(&[p(0., 0.), p(10., 0.), p(10., 4.), p(0., 4.)], 6),
+        );
         // target: a bent, stretched boundary with the same vertex count
-        b.target = b.source.iter().map(|q| p(q.x * 1.2, q.y + 0.05 * q.x * q.x)).collect();
+        b.target = b
+            .source
+            .iter()
+            .map(|q| p(q.x * 1.2, q.y + 0.05 * q.x * q.x))
+            .collect();
         let mut eye = pair("feature-eye", true, circle(p(3., 2.), 1.0, 12));
-        eye.target = circle(p(4., 4.), 0.5, 12).iter().map(|q| p(q.x * 1.5, q.y)).collect();
-        let mut line = pair("feature-line", false, vec![p(6., 1.), p(7., 2.), p(8., 2.5)]);
+        eye.target = circle(p(4., 4.), 0.5, 12)
+            .iter()
+            .map(|q| p(q.x * 1.5, q.y))
+            .collect();
+        let mut line = pair(
+            "feature-line",
+            false,
+            vec![p(6., 1.), p(7., 2.), p(8., 2.5)],
+        );
         line.target = vec![p(7., 3.), p(8., 2.), p(9., 3.)];
         vec![b, eye, line]
     }
 
     fn similar(pairs: &mut [CurvePair], angle: f64, s: f64, d: Point) {
         for pc in pairs {
-            pc.target = pc.source.iter().map(|q| d + s * rotate(*q, angle)).collect();
+            pc.target = pc
+                .source
+                .iter()
+                .map(|q| d + s * rotate(*q, angle))
+                .collect();
         }
     }
 
@@ -295,7 +361,11 @@ mod tests {
             m.curves_at(t, &mut out);
             for (pc, o) in pairs.iter().zip(&out) {
                 let end = side_of(pc, side);
-                let err = end.iter().zip(o).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+                let err = end
+                    .iter()
+                    .zip(o)
+                    .map(|(a, b)| a.distance(*b))
+                    .fold(0.0, f64::max);
                 assert!(err < 1e-6, "{} off by {err} at t={t}", pc.id);
             }
         }
@@ -324,12 +394,20 @@ mod tests {
                 for (pc, o) in pairs.iter().zip(&out) {
                     for (q, r) in pc.source.iter().zip(o) {
                         let expect = b0 + s * rotate(*q - a0, rot);
-                        assert!(expect.distance(*r) < 1e-9, "deg {deg} t {t}: {} off by {}", pc.id, expect.distance(*r));
+                        assert!(
+                            expect.distance(*r) < 1e-9,
+                            "deg {deg} t {t}: {} off by {}",
+                            pc.id,
+                            expect.distance(*r)
+                        );
                     }
                 }
                 assert!((s - (1.0 - t + t * 1.7)).abs() < 1e-12);
                 // the short way round: rotation t·angle with angle in (−π, π]
-                assert!((wrap(rot - t * wrap(angle))).abs() < 1e-9, "deg {deg} t {t} rot {rot}");
+                assert!(
+                    (wrap(rot - t * wrap(angle))).abs() < 1e-9,
+                    "deg {deg} t {t} rot {rot}"
+                );
             }
         }
     }

@@ -87,13 +87,10 @@ impl Interpolator {
             })
             .collect();
         let mut done = vec![false; n];
-        loop {
-            let Some(root) = (0..n)
-                .filter(|&i| !done[i])
-                .min_by(|&a, &b| disc_rotation[a].abs().total_cmp(&disc_rotation[b].abs()))
-            else {
-                break;
-            };
+        while let Some(root) = (0..n)
+            .filter(|&i| !done[i])
+            .min_by(|&a, &b| disc_rotation[a].abs().total_cmp(&disc_rotation[b].abs()))
+        {
             done[root] = true;
             let mut queue = std::collections::VecDeque::from([root]);
             while let Some(i) = queue.pop_front() {

@@ -90,7 +90,11 @@ pub fn triangulate(
 
 /// Checks the curves of one side: one closed, simple, counter-clockwise boundary first; features
 /// inside it; no crossings, touchings or coincident vertices.
-pub(crate) fn validate_curves(pairs: &[CurvePair], tol: &Tolerances, from_target: bool) -> Result<()> {
+pub(crate) fn validate_curves(
+    pairs: &[CurvePair],
+    tol: &Tolerances,
+    from_target: bool,
+) -> Result<()> {
     let file = if from_target { "<target>" } else { "<source>" };
     let side = |p| side_of(p, from_target);
     let Some(boundary) = pairs.first().filter(|p| p.kind == CurveKind::Boundary) else {

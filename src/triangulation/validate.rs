@@ -35,8 +35,10 @@ pub(crate) fn first_crossing(curves: &[CurveRef<'_>]) -> Option<(EdgeRef, EdgeRe
 /// Every pair of curves `(c1, c2)` with `c1 <= c2` that cross or touch (as in
 /// [`first_crossing`]), sorted.
 pub(crate) fn crossing_curves(curves: &[CurveRef<'_>]) -> Vec<(usize, usize)> {
-    let mut pairs: Vec<(usize, usize)> =
-        crossings(curves, false).into_iter().map(|((c1, _), (c2, _))| (c1, c2)).collect();
+    let mut pairs: Vec<(usize, usize)> = crossings(curves, false)
+        .into_iter()
+        .map(|((c1, _), (c2, _))| (c1, c2))
+        .collect();
     pairs.sort_unstable();
     pairs.dedup();
     pairs
