@@ -177,8 +177,8 @@ impl Harmonic {
         self.finish(&llt, out)
     }
 
-    /// Assembles `L_ff` and `−L_fb x_b` (from the fixed entries of `out`… filled in `finish`) and
-    /// factors `L_ff`.
+    /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored
+    /// back so that the right-hand side uses the same weights) and factors it numerically.
     fn factor(
         &mut self,
         symbolic: &SymbolicLlt<usize>,
@@ -208,6 +208,7 @@ impl Harmonic {
         Llt::try_new_with_symbolic(symbolic.clone(), mat, Side::Upper).ok()
     }
 
+    /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
     fn finish(&mut self, llt: &Llt<usize, f64>, out: &mut [Point]) -> Result<()> {
         let nf = self.free_vertices.len();
         self.rhs.fill(0.0);

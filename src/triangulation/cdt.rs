@@ -76,12 +76,19 @@ pub(super) fn build(
         .ok_or_else(|| CdtError::Other("no vertices".into()))?;
     let box_area = (hi - lo).x * (hi - lo).y;
     let cap = (8.0 * box_area / tol.max_area.max(f64::MIN_POSITIVE)).min(4e6) as usize + 10 * count;
+    // Faces below a billionth of the largest area are left alone: outside the boundary, nearly
+    // collinear hull vertices form slivers without a finite circumcenter, which spade's
+    // refinement cannot locate.
     let params = RefinementParameters::<f64>::new()
         .keep_constraint_edges()
         .with_angle_limit(AngleLimit::from_deg(super::MIN_ANGLE_DEG))
         .with_max_allowed_area(tol.max_area)
+        .with_min_required_area(tol.max_area * 1e-9)
         .with_max_additional_vertices(cap);
-    let result = cdt.refine(params);
+    // spade documents no panics for `refine`, but a failed point location panics inside it; keep
+    // that from reaching the caller.
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(params)))
+        .map_err(|_| CdtError::Other("spade's Delaunay refinement failed".into()))?;
     if !result.refinement_complete {
         log::warn!("triangulation: refinement stopped at {cap} additional vertices");
     }

@@ -189,3 +189,69 @@ fn crossing_and_outside_features_are_named() {
     pairs[0].source.reverse();
     assert!(triangulate(&pairs, &tol, false).is_err());
 }
+
+/// A star-shaped polygon around the origin with radii `radii` (counter-clockwise), edges split
+/// to at most `max_edge`.
+pub(crate) fn star(radii: &[f64], max_edge: f64) -> Vec<Point> {
+    let n = radii.len();
+    let corners: Vec<Point> = radii
+        .iter()
+        .enumerate()
+        .map(|(k, r)| *r * Point::from_angle(k as f64 / n as f64 * std::f64::consts::TAU))
+        .collect();
+    resampled(&corners, max_edge)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn random_star_shapes_triangulate_exactly(
+        radii in proptest::collection::vec(0.6f64..1.0, 5..12),
+        with_feature in proptest::bool::ANY,
+    ) {
+        let mut pairs = vec![pair("boundary", true, star(&radii, 0.08))];
+        if with_feature {
+            pairs.push(pair("feature-c", true, circle(p(0.05, -0.02), 0.2, 12)));
+        }
+        let tol = Tolerances::new(2.0, 1.0);
+        let tri = triangulate(&pairs, &tol, false).unwrap();
+        proptest::prop_assert_eq!(count_inverted(&tri.triangles, &tri.points), 0);
+        let area: f64 = tri
+            .triangles
+            .iter()
+            .map(|t| triangle_area(tri.points[t[0] as usize], tri.points[t[1] as usize], tri.points[t[2] as usize]))
+            .sum();
+        proptest::prop_assert!((area - polygon_area(&pairs[0].source)).abs() < 1e-12);
+        let e = edges(&tri.triangles);
+        for mc in &tri.curves {
+            let n = mc.vertices.len();
+            for k in 0..n {
+                let (a, b) = (mc.vertices[k], mc.vertices[(k + 1) % n]);
+                proptest::prop_assert!(e.binary_search(&(a.min(b), a.max(b))).is_ok());
+            }
+        }
+        let r = crate::mesh::sanity_check(
+            &crate::mesh::CompatibleMeshes {
+                triangles: tri.triangles.clone(),
+                source: tri.points.clone(),
+                target: tri.points.clone(),
+                curves: tri.curves.clone(),
+            },
+            None,
+            0.0,
+        );
+        proptest::prop_assert!(r.is_ok(), "{:?}", r);
+    }
+}
+
+/// Shrunk proptest case: nearly collinear boundary vertices on the convex hull make outer
+/// slivers whose circumcenters are not finite; refining them made spade loop and panic.
+#[test]
+fn regression_collinear_hull_vertices() {
+    let radii = [0.6, 0.721148464254704, 0.7455831531867653, 0.6, 0.6];
+    let pairs = vec![pair("boundary", true, star(&radii, 0.08))];
+    let tol = Tolerances::new(2.0, 1.0);
+    let tri = triangulate(&pairs, &tol, false).unwrap();
+    assert_eq!(count_inverted(&tri.triangles, &tri.points), 0);
+}

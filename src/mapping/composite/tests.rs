@@ -213,6 +213,7 @@ fn features_that_swap_sides_are_reported_by_name() {
         "{msg}"
     );
     assert!(msg.contains("Fig.16"), "{msg}");
+    println!("{msg}");
 }
 
 #[test]
@@ -242,5 +243,33 @@ fn timing_of_a_700_vertex_mesh() {
              triangulation {per_cdt:.2} ms",
             stats.vertices, stats.triangles, stats.steps, stats.rejected_steps
         );
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+
+    #[test]
+    fn random_similarities_map_exactly(
+        radii in proptest::collection::vec(0.6f64..1.0, 5..10),
+        angle in -7.0f64..7.0,
+        scale in 0.2f64..5.0,
+        dx in -10.0f64..10.0,
+    ) {
+        let mut pairs = vec![
+            pair("boundary", true, crate::triangulation::tests::star(&radii, 0.1)),
+            pair("feature-c", true, circle(p(0.1, 0.0), 0.2, 10)),
+            pair("feature-l", false, vec![p(-0.3, -0.3), p(-0.2, -0.1), p(-0.25, 0.1)]),
+        ];
+        let rot = Point::from_angle(angle);
+        for pc in &mut pairs {
+            pc.target = pc.source.iter().map(|q| p(dx, 1.0) + scale * rot.rotate(*q)).collect();
+        }
+        let (m, _) = map(&pairs, false).unwrap();
+        assert_healthy(&m, &pairs);
+        for (q, r) in m.source.iter().zip(&m.target) {
+            let expect = p(dx, 1.0) + scale * rot.rotate(*q);
+            proptest::prop_assert!(expect.distance(*r) < 1e-9 * 2.0 * scale.max(1.0));
+        }
     }
 }
