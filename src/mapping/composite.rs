@@ -1,4 +1,4 @@
-//! Composite harmonic mapping (§5, after [41]): the triangulation walks from the source curves to
+//! Composite harmonic mapping (§5, after \[41\]): the triangulation walks from the source curves to
 //! the target curves through the intermediate curves of the barycenter-based shape model, one
 //! harmonic map per step, and no step may flip a triangle.
 //!

@@ -1,4 +1,4 @@
-//! Discrete harmonic map with cotangent weights (the harmonic coordinates of [36], §5).
+//! Discrete harmonic map with cotangent weights (the harmonic coordinates of \[36\], §5).
 //!
 //! Given a triangulation, a set of fixed vertices with prescribed new positions, and the current
 //! vertex positions (the *metric*), the free vertices are placed where the cotangent Laplacian of

@@ -1,7 +1,7 @@
 //! The barycenter-based shape model (BSM, §5): intermediate boundary and feature curves between
 //! the source and the target, for the composite harmonic mapping.
 //!
-//! Each curve's shape is described by its intrinsic parameters [9] — edge lengths and turning
+//! Each curve's shape is described by its intrinsic parameters \[9\] — edge lengths and turning
 //! angles — interpolated linearly, `M_s^t = M_s^0 + t (M_s^1 − M_s^0)`. The spatial relation
 //! between curves is described by the *barycenter mesh*: one node per curve at its barycenter
 //! (vertex mean), every node connected to every other, interpolated with the disc-based

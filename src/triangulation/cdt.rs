@@ -53,6 +53,7 @@ pub(super) fn build(
     }
     let handle = |c: usize, k: usize| FixedVertexHandle::from_index(starts[c] + k);
     let mut boundary_edges = BTreeSet::new();
+    let mut curve_edges = Vec::new();
     for (c, &(pts, closed)) in curves.iter().enumerate() {
         let n = pts.len();
         let m = if closed { n } else { n - 1 };
@@ -68,6 +69,7 @@ pub(super) fn build(
             if c == 0 {
                 boundary_edges.insert((a.index(), b.index()));
             }
+            curve_edges.push((a, b));
         }
     }
 
@@ -91,6 +93,14 @@ pub(super) fn build(
         .map_err(|_| CdtError::Other("spade's Delaunay refinement failed".into()))?;
     if !result.refinement_complete {
         log::warn!("triangulation: refinement stopped at {cap} additional vertices");
+    }
+
+    // Refinement must not have split a curve edge: every curve vertex keeps its twin.
+    if curve_edges
+        .iter()
+        .any(|&(a, b)| cdt.get_edge_from_neighbors(a, b).is_none())
+    {
+        return Err(CdtError::Other("refinement split a curve edge".into()));
     }
 
     // Flood fill from the faces left of the boundary edges, never crossing a boundary edge.

@@ -1,6 +1,6 @@
 //! Constrained Delaunay triangulation of the source shape (§5) with spade.
 //!
-//! The paper triangulates the source with Triangle [37], taking the boundary and every interior
+//! The paper triangulates the source with Triangle \[37\], taking the boundary and every interior
 //! feature curve as constraints. Here: the curves are validated first ([`triangulate`] refuses
 //! self-intersecting or crossing curves with an error naming them), then spade builds the CDT,
 //! Delaunay refinement improves its angles without ever splitting a curve edge (so every curve
