@@ -83,7 +83,8 @@ impl Default for MappingOptions {
 pub struct MappingStats {
     /// Accepted steps (harmonic maps composed into the result).
     pub steps: usize,
-    /// Steps rejected because they flipped a triangle or made curves cross.
+    /// Steps rejected because they flipped a triangle or made curves cross, including every
+    /// step of an abandoned BSM path when the straight-line fallback was taken.
     pub rejected_steps: usize,
     /// Vertices of the compatible meshes.
     pub vertices: usize,
@@ -137,6 +138,7 @@ pub fn composite_map(
         Err(e) if e.is_input() && opts.linear_fallback => {
             log::debug!("composite map: BSM path failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, from_target)?;
+            stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
             let c =
                 walk(tri, pairs, &linear, 1.0, &mut harmonic, opts, &mut stats).map_err(|_| e)?;
