@@ -1,0 +1,357 @@
+//! Composite harmonic mapping (§5, after \[41\]): the triangulation walks from the source curves to
+//! the target curves through the intermediate curves of the barycenter-based shape model, one
+//! harmonic map per step, and no step may flip a triangle.
+//!
+//! Each step `t_k → t_{k+1}` moves the curve vertices onto the shape model's curves at `t_{k+1}`
+//! and places the other vertices by the harmonic map with the cotangent weights of the mesh at
+//! `t_k` (the metric changes every step; the sparsity pattern, and so the symbolic
+//! factorization, does not). A step that flips a triangle (exact orientation test) or makes the
+//! intermediate curves cross is rejected and halved; after an accepted step the step grows back.
+//! When the curves' spatial relation changes between source and target — a feature passing
+//! through another or through the boundary, the limitation of the paper's Fig.16 — no flip-free
+//! sequence exists, and the mapping reports the curves concerned instead of returning a folded
+//! mesh.
+
+use super::harmonic::Harmonic;
+use super::shape_model::ShapeModel;
+use crate::correspondence::CurvePair;
+use crate::geometry::Point;
+use crate::mesh::{count_inverted, CompatibleMeshes};
+use crate::tolerance::Tolerances;
+use crate::triangulation::validate::{crossing_curves, CurveRef};
+use crate::triangulation::{validate_curves, Triangulation};
+use crate::{Error, Result};
+
+/// Step control of the composite mapping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct MappingOptions {
+    /// Number of equal steps tried first; also bounds the largest step (`1 / initial_steps`).
+    /// Default: 4.
+    pub initial_steps: usize,
+    /// Largest number of harmonic maps computed in total, accepted or rejected. Default: 2048.
+    pub max_steps: usize,
+    /// Smallest step in `t` before giving up. Default: 1/4096.
+    pub min_step: f64,
+    /// When the BSM path cannot be followed without folding, try again with straight-line
+    /// intermediate curves before reporting the failure. Default: true.
+    pub linear_fallback: bool,
+}
+
+impl MappingOptions {
+    /// The defaults: 4 initial steps, at most 2048 maps, steps no shorter than 1/4096.
+    pub const DEFAULT: MappingOptions = MappingOptions {
+        initial_steps: 4,
+        max_steps: 2048,
+        min_step: 1.0 / 4096.0,
+        linear_fallback: true,
+    };
+
+    /// Sets [`MappingOptions::initial_steps`].
+    pub fn with_initial_steps(mut self, n: usize) -> Self {
+        self.initial_steps = n;
+        self
+    }
+
+    /// Sets [`MappingOptions::max_steps`].
+    pub fn with_max_steps(mut self, n: usize) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    /// Sets [`MappingOptions::linear_fallback`].
+    pub fn with_linear_fallback(mut self, on: bool) -> Self {
+        self.linear_fallback = on;
+        self
+    }
+
+    /// Sets [`MappingOptions::min_step`].
+    pub fn with_min_step(mut self, h: f64) -> Self {
+        self.min_step = h;
+        self
+    }
+}
+
+impl Default for MappingOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// What the composite mapping did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct MappingStats {
+    /// Accepted steps (harmonic maps composed into the result).
+    pub steps: usize,
+    /// Steps rejected because they flipped a triangle or made curves cross, including every
+    /// step of an abandoned BSM path when the straight-line fallback was taken.
+    pub rejected_steps: usize,
+    /// Vertices of the compatible meshes.
+    pub vertices: usize,
+    /// Triangles of the compatible meshes.
+    pub triangles: usize,
+    /// Whether the straight-line fallback path was used instead of the BSM.
+    pub linear_path: bool,
+}
+
+/// Maps the triangulation `tri` of one side of `pairs` onto the other side (§5): returns the
+/// compatible meshes — `source` positions in the source drawing and `target` positions in the
+/// target drawing whichever side was triangulated — with every curve vertex exactly on its twin
+/// and no inverted triangle, or an input error naming the curves whose spatial relation changes
+/// (Fig.16) when no flip-free mapping is found.
+pub fn composite_map(
+    tri: &Triangulation,
+    pairs: &[CurvePair],
+    tol: &Tolerances,
+    opts: &MappingOptions,
+) -> Result<(CompatibleMeshes, MappingStats)> {
+    let from_target = tri.from_target;
+    validate_curves(pairs, tol, !from_target)?;
+    if tri.curves.len() != pairs.len()
+        || tri
+            .curves
+            .iter()
+            .zip(pairs)
+            .any(|(c, p)| c.vertices.len() != p.source.len())
+    {
+        return Err(Error::internal(
+            "composite map: triangulation does not match the curve pairs",
+        ));
+    }
+    let n = tri.points.len();
+    let mut fixed = vec![false; n];
+    for v in tri.curves.iter().flat_map(|c| &c.vertices) {
+        *fixed
+            .get_mut(*v as usize)
+            .ok_or_else(|| Error::internal("composite map: bad curve vertex"))? = true;
+    }
+    let mut harmonic = Harmonic::new(&tri.triangles, n, &fixed)?;
+    let mut stats = MappingStats {
+        vertices: n,
+        triangles: tri.triangles.len(),
+        ..Default::default()
+    };
+    let model = ShapeModel::new(pairs, from_target)?;
+    let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
+    let current = match walk(tri, pairs, &model, h_bsm, &mut harmonic, opts, &mut stats) {
+        Ok(c) => c,
+        Err(e) if e.is_input() && opts.linear_fallback => {
+            log::debug!("composite map: BSM path failed ({e}), trying straight lines");
+            let linear = ShapeModel::linear(pairs, from_target)?;
+            stats.rejected_steps += std::mem::take(&mut stats.steps);
+            // Starting with one whole step: the direct harmonic map, then straight-line halves.
+            let c =
+                walk(tri, pairs, &linear, 1.0, &mut harmonic, opts, &mut stats).map_err(|_| e)?;
+            stats.linear_path = true;
+            c
+        }
+        Err(e) => return Err(e),
+    };
+    // The last step put the curve vertices exactly on the far side's curves.
+    let (source, target) = if from_target {
+        (current, tri.points.clone())
+    } else {
+        (tri.points.clone(), current)
+    };
+    debug_assert!(tri.curves.iter().zip(pairs).all(|(c, p)| c
+        .vertices
+        .iter()
+        .zip(&p.target)
+        .all(|(&v, &q)| target[v as usize] == q)));
+    let meshes = CompatibleMeshes {
+        triangles: tri.triangles.clone(),
+        source,
+        target,
+        curves: tri.curves.clone(),
+    };
+    Ok((meshes, stats))
+}
+
+/// Follows the intermediate curves of `model` from t = 0 to 1 with adaptive steps no longer
+/// than `h_max`; returns the vertex positions at t = 1.
+fn walk(
+    tri: &Triangulation,
+    pairs: &[CurvePair],
+    model: &ShapeModel,
+    h_max: f64,
+    harmonic: &mut Harmonic,
+    opts: &MappingOptions,
+    stats: &mut MappingStats,
+) -> Result<Vec<Point>> {
+    let mut current = tri.points.clone();
+    let mut next = current.clone();
+    let mut curves: Vec<Vec<Point>> = Vec::new();
+    let min_step = opts.min_step.max(f64::EPSILON);
+    let (mut t, mut h, mut maps) = (0.0f64, h_max, 0usize);
+    while t < 1.0 {
+        if maps >= opts.max_steps {
+            return Err(failure(
+                model,
+                pairs,
+                t + h,
+                &mut curves,
+                " within the maximum number of steps",
+            ));
+        }
+        maps += 1;
+        let t1 = if t + h >= 1.0 - 1e-12 { 1.0 } else { t + h };
+        model.curves_at(t1, &mut curves);
+        let ok = {
+            let refs: Vec<CurveRef<'_>> = curves
+                .iter()
+                .zip(pairs)
+                .map(|(c, p)| (c.as_slice(), p.closed))
+                .collect();
+            crossing_curves(&refs).is_empty()
+        } && {
+            next.copy_from_slice(&current);
+            for (c, pts) in tri.curves.iter().zip(&curves) {
+                for (&v, &q) in c.vertices.iter().zip(pts) {
+                    next[v as usize] = q;
+                }
+            }
+            harmonic.solve(&current, &mut next)?;
+            count_inverted(&tri.triangles, &next) == 0
+                && !tri.triangles.iter().any(|t| is_bad(t, &next))
+        };
+        if ok {
+            std::mem::swap(&mut current, &mut next);
+            t = t1;
+            stats.steps += 1;
+            h = (2.0 * h).min(h_max);
+        } else {
+            stats.rejected_steps += 1;
+            h *= 0.5;
+            if h < min_step {
+                return Err(flip_report(model, pairs, tri, t1, &next, &mut curves));
+            }
+        }
+    }
+    Ok(current)
+}
+
+/// Whether a triangle is inverted (exact predicate) or so thin that its cotangent weights would not be
+/// finite in floating point: twice its area below `1e-13` times its longest edge squared. Such a
+/// mesh is not accepted as a step, because the next step's metric needs it.
+fn is_bad(t: &[u32; 3], points: &[Point]) -> bool {
+    let [a, b, c] = t.map(|v| points[v as usize]);
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    crate::geometry::orient2d(a, b, c) <= 0.0 || (b - a).perp_dot(c - a) <= 1e-13 * longest
+}
+
+const FIG16: &str = "the curves change their spatial relation between source and target, which the composite \
+                     mapping cannot follow without folding the mesh (the paper's Fig.16 limitation)";
+const HINT: &str =
+    "keep features on the same side of each other and of the boundary in both drawings, \
+                    reduce the change between them, or remove one of them";
+
+/// The error for a failed mapping at time `t`: names the curve pairs whose intermediate curves
+/// cross there, if any.
+fn failure(
+    model: &ShapeModel,
+    pairs: &[CurvePair],
+    t: f64,
+    curves: &mut Vec<Vec<Point>>,
+    why: &str,
+) -> Error {
+    match crossing_names(model, pairs, t, curves) {
+        Some(names) => Error::input(
+            "<source> → <target>",
+            format!("no flip-free mapping{why}: at t = {t:.3} {names}; {FIG16}"),
+        )
+        .with_hint(HINT),
+        None => Error::input(
+            "<source> → <target>",
+            format!("no flip-free mapping{why} (t = {t:.3}); {FIG16}"),
+        )
+        .with_hint(HINT),
+    }
+}
+
+fn crossing_names(
+    model: &ShapeModel,
+    pairs: &[CurvePair],
+    t: f64,
+    curves: &mut Vec<Vec<Point>>,
+) -> Option<String> {
+    model.curves_at(t.min(1.0), curves);
+    let refs: Vec<CurveRef<'_>> = curves
+        .iter()
+        .zip(pairs)
+        .map(|(c, p)| (c.as_slice(), p.closed))
+        .collect();
+    let crossing = crossing_curves(&refs);
+    if crossing.is_empty() {
+        return None;
+    }
+    let names: Vec<String> = crossing
+        .iter()
+        .map(|&(a, b)| {
+            if a == b {
+                format!("{} intersects itself", pairs[a].id)
+            } else {
+                format!("{} crosses {}", pairs[b].id, pairs[a].id)
+            }
+        })
+        .collect();
+    Some(names.join(", "))
+}
+
+/// The error after step halving failed at `t`: crossing intermediate curves if there are any,
+/// else the curves nearest to the flipped triangles of the rejected step (`attempt`).
+fn flip_report(
+    model: &ShapeModel,
+    pairs: &[CurvePair],
+    tri: &Triangulation,
+    t: f64,
+    attempt: &[Point],
+    curves: &mut Vec<Vec<Point>>,
+) -> Error {
+    if crossing_names(model, pairs, t, curves).is_some() {
+        return failure(model, pairs, t, curves, "");
+    }
+    let mut near: Vec<usize> = Vec::new();
+    for tr in &tri.triangles {
+        if !is_bad(tr, attempt) {
+            continue;
+        }
+        let [a, b, c] = tr.map(|v| attempt[v as usize]);
+        let centre = (a + b + c) / 3.0;
+        let nearest = tri
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(i, cv)| {
+                let d = cv
+                    .vertices
+                    .iter()
+                    .map(|&v| attempt[v as usize].distance(centre))
+                    .fold(f64::INFINITY, f64::min);
+                (d, i)
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        if let Some((_, i)) = nearest {
+            if !near.contains(&i) {
+                near.push(i);
+            }
+        }
+    }
+    near.sort_unstable();
+    let names: Vec<&str> = near.iter().take(4).map(|&i| pairs[i].id.as_str()).collect();
+    Error::input(
+        "<source> → <target>",
+        format!(
+            "no flip-free mapping (t = {t:.3}): the mesh folds near {} when following the change of \
+             the curves' layout (too large a relative rotation or deformation between neighbouring \
+             curves; a limitation of the composite mapping, cf. the paper's Fig.16)",
+            if names.is_empty() { "the curves".to_string() } else { names.join(", ") }
+        ),
+    )
+    .with_hint(HINT)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,294 @@
+//! Discrete harmonic map with cotangent weights (the harmonic coordinates of \[36\], §5).
+//!
+//! Given a triangulation, a set of fixed vertices with prescribed new positions, and the current
+//! vertex positions (the *metric*), the free vertices are placed where the cotangent Laplacian of
+//! the current mesh vanishes: `L_ff x_f = −L_fb x_b`, solved for x and y at once.
+//!
+//! The cotangent Laplacian is the stiffness matrix of piecewise-linear finite elements, a sum of
+//! per-triangle positive semi-definite matrices, so it is positive semi-definite for any
+//! positively oriented mesh, even with the negative weights of obtuse triangles; with the
+//! boundary rows removed it is positive definite as long as every free vertex is connected to a
+//! fixed one. A sparse Cholesky factorization therefore applies. Its symbolic analysis is done
+//! once, because the sparsity pattern never changes, and only the numeric factorization is
+//! redone per step (the metric changes every step of the composite map, as in libigl's
+//! `bijective_composite_harmonic_mapping`). Should the numeric factorization still fail (nearly
+//! degenerate triangles), the weights are clamped to a small positive floor, which makes the
+//! matrix diagonally dominant and the map a convex-combination (Tutte) map.
+
+use crate::geometry::Point;
+use crate::{Error, Result};
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Mat, Side};
+
+const NONE: u32 = u32::MAX;
+
+/// A reusable harmonic-map solver for one triangulation and one set of fixed vertices: the
+/// symbolic factorization is computed once in [`Harmonic::new`], each [`Harmonic::solve`]
+/// assembles the cotangent weights of the given metric and refactors numerically.
+#[derive(Debug, Clone)]
+pub struct Harmonic {
+    triangles: Vec<[u32; 3]>,
+    /// Undirected edges `(lo, hi)`, sorted.
+    edges: Vec<(u32, u32)>,
+    /// Per triangle, the edge index opposite each of its corners.
+    opposite: Vec<[u32; 3]>,
+    /// Vertex → free index, or `NONE` for fixed vertices.
+    free_index: Vec<u32>,
+    free_vertices: Vec<u32>,
+    /// Per edge with both ends free, its slot in `values` (upper triangle), else `NONE`.
+    off_slot: Vec<u32>,
+    /// Per free vertex, the slot of its diagonal entry.
+    diag_slot: Vec<u32>,
+    pattern: SymbolicSparseColMat<usize>,
+    symbolic: Option<SymbolicLlt<usize>>,
+    values: Vec<f64>,
+    weights: Vec<f64>,
+    rhs: Mat<f64>,
+}
+
+impl Harmonic {
+    /// Prepares the solver: `fixed[v]` marks the vertices whose positions are prescribed.
+    /// Errors if an index is out of range.
+    pub fn new(triangles: &[[u32; 3]], vertex_count: usize, fixed: &[bool]) -> Result<Self> {
+        if fixed.len() != vertex_count
+            || triangles
+                .iter()
+                .flatten()
+                .any(|&v| v as usize >= vertex_count)
+        {
+            return Err(Error::internal("harmonic map: index out of range"));
+        }
+        let edges = crate::mesh::edges(triangles);
+        let find = |a: u32, b: u32| edges.binary_search(&(a.min(b), a.max(b))).map(|e| e as u32);
+        let opposite = triangles
+            .iter()
+            .map(|t| {
+                [find(t[1], t[2]), find(t[2], t[0]), find(t[0], t[1])].map(|e| e.unwrap_or(NONE))
+            })
+            .collect();
+        let mut free_index = vec![NONE; vertex_count];
+        let mut free_vertices = Vec::new();
+        for v in 0..vertex_count {
+            if !fixed[v] {
+                free_index[v] = free_vertices.len() as u32;
+                free_vertices.push(v as u32);
+            }
+        }
+        let nf = free_vertices.len();
+        // Upper-triangle pattern: column j holds rows i ≤ j.
+        let mut cols: Vec<Vec<usize>> = (0..nf).map(|j| vec![j]).collect();
+        for &(a, b) in &edges {
+            let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
+            if fa != NONE && fb != NONE {
+                let (i, j) = (fa.min(fb) as usize, fa.max(fb) as usize);
+                cols[j].push(i);
+            }
+        }
+        let mut col_ptr = vec![0usize];
+        let mut row_idx = Vec::new();
+        for c in &mut cols {
+            c.sort_unstable();
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len());
+        }
+        let slot = |i: usize, j: usize| -> u32 {
+            let col = &row_idx[col_ptr[j]..col_ptr[j + 1]];
+            (col_ptr[j] + col.binary_search(&i).unwrap_or(0)) as u32
+        };
+        let diag_slot = (0..nf).map(|j| slot(j, j)).collect();
+        let off_slot = edges
+            .iter()
+            .map(|&(a, b)| {
+                let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
+                if fa != NONE && fb != NONE {
+                    slot(fa.min(fb) as usize, fa.max(fb) as usize)
+                } else {
+                    NONE
+                }
+            })
+            .collect();
+        let nnz = row_idx.len();
+        let pattern = SymbolicSparseColMat::new_checked(nf, nf, col_ptr, None, row_idx);
+        let symbolic = if nf > 0 {
+            Some(
+                SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).map_err(|e| {
+                    Error::internal(format!("harmonic map: symbolic factorization: {e:?}"))
+                })?,
+            )
+        } else {
+            None
+        };
+        Ok(Harmonic {
+            triangles: triangles.to_vec(),
+            weights: vec![0.0; edges.len()],
+            edges,
+            opposite,
+            free_index,
+            free_vertices,
+            off_slot,
+            diag_slot,
+            pattern,
+            symbolic,
+            values: vec![0.0; nnz],
+            rhs: Mat::zeros(nf, 2),
+        })
+    }
+
+    /// Computes the harmonic map with the cotangent weights of `metric` (the current vertex
+    /// positions): fixed entries of `out` are read as the prescribed positions, free entries are
+    /// overwritten with the solution.
+    pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+        let n = self.free_index.len();
+        if metric.len() != n || out.len() != n {
+            return Err(Error::internal("harmonic map: wrong vertex count"));
+        }
+        let Some(symbolic) = self.symbolic.clone() else {
+            return Ok(());
+        };
+        self.weights.fill(0.0);
+        for (t, opp) in self.triangles.iter().zip(&self.opposite) {
+            let p = t.map(|v| metric[v as usize]);
+            let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
+            for k in 0..3 {
+                let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+                if opp[k] != NONE {
+                    self.weights[opp[k] as usize] += 0.5 * a.dot(b) / twice_area;
+                }
+            }
+        }
+        if self.weights.iter().any(|w| !w.is_finite()) {
+            return Err(Error::internal(
+                "harmonic map: degenerate triangle in the metric",
+            ));
+        }
+        if let Some(llt) = self.factor(&symbolic, None) {
+            return self.finish(&llt, out);
+        }
+        // Numerically indefinite: clamp to a positive floor (a convex-combination map).
+        let mean =
+            self.weights.iter().map(|w| w.abs()).sum::<f64>() / self.weights.len().max(1) as f64;
+        let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
+        log::debug!("harmonic map: cotangent matrix not positive definite, clamping weights");
+        let llt = self
+            .factor(&symbolic, Some(floor))
+            .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?;
+        self.finish(&llt, out)
+    }
+
+    /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored
+    /// back so that the right-hand side uses the same weights) and factors it numerically.
+    fn factor(
+        &mut self,
+        symbolic: &SymbolicLlt<usize>,
+        floor: Option<f64>,
+    ) -> Option<Llt<usize, f64>> {
+        self.values.fill(0.0);
+        for (e, &(a, b)) in self.edges.iter().enumerate() {
+            let w = match floor {
+                Some(f) => self.weights[e].max(f),
+                None => self.weights[e],
+            };
+            let (fa, fb) = (self.free_index[a as usize], self.free_index[b as usize]);
+            if fa != NONE {
+                self.values[self.diag_slot[fa as usize] as usize] += w;
+            }
+            if fb != NONE {
+                self.values[self.diag_slot[fb as usize] as usize] += w;
+            }
+            if self.off_slot[e] != NONE {
+                self.values[self.off_slot[e] as usize] -= w;
+            }
+            if floor.is_some() {
+                self.weights[e] = w;
+            }
+        }
+        let mat = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        Llt::try_new_with_symbolic(symbolic.clone(), mat, Side::Upper).ok()
+    }
+
+    /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
+    fn finish(&mut self, llt: &Llt<usize, f64>, out: &mut [Point]) -> Result<()> {
+        let nf = self.free_vertices.len();
+        self.rhs.fill(0.0);
+        for (e, &(a, b)) in self.edges.iter().enumerate() {
+            let w = self.weights[e];
+            let (fa, fb) = (self.free_index[a as usize], self.free_index[b as usize]);
+            if fa != NONE && fb == NONE {
+                let q = out[b as usize];
+                self.rhs[(fa as usize, 0)] += w * q.x;
+                self.rhs[(fa as usize, 1)] += w * q.y;
+            } else if fb != NONE && fa == NONE {
+                let q = out[a as usize];
+                self.rhs[(fb as usize, 0)] += w * q.x;
+                self.rhs[(fb as usize, 1)] += w * q.y;
+            }
+        }
+        llt.solve_in_place(self.rhs.as_mut());
+        for f in 0..nf {
+            let p = Point::new(self.rhs[(f, 0)], self.rhs[(f, 1)]);
+            if !p.is_finite() {
+                return Err(Error::internal("harmonic map: non-finite solution"));
+            }
+            out[self.free_vertices[f] as usize] = p;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::triangulation::tests::{circle, pair, subdivided};
+    use crate::triangulation::triangulate;
+
+    #[test]
+    fn reproduces_an_affine_map_exactly() {
+        let p = Point::new;
+        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 20);
+        let pairs = vec![
+            pair("boundary", true, sq),
+            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
+        ];
+        let tri =
+            triangulate(&pairs, &crate::tolerance::Tolerances::new(14.0, 1.0), false).unwrap();
+        let n = tri.points.len();
+        let mut fixed = vec![false; n];
+        for c in &tri.curves {
+            for &v in &c.vertices {
+                fixed[v as usize] = true;
+            }
+        }
+        assert!(fixed.iter().filter(|f| !**f).count() > 50);
+        let affine =
+            |q: Point| Point::new(1.3 * q.x - 0.4 * q.y + 3.0, 0.2 * q.x + 0.7 * q.y - 1.0);
+        let mut h = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
+        for _ in 0..2 {
+            // free entries start with garbage: they must be overwritten
+            let mut out: Vec<Point> = tri
+                .points
+                .iter()
+                .zip(&fixed)
+                .map(|(q, &f)| if f { affine(*q) } else { p(1e3, -7.) })
+                .collect();
+            h.solve(&tri.points, &mut out).unwrap();
+            for (q, o) in tri.points.iter().zip(&out) {
+                assert!(affine(*q).distance(*o) < 1e-11, "{} vs {}", affine(*q), o);
+            }
+        }
+    }
+
+    #[test]
+    fn a_vertex_in_the_middle_goes_to_the_weighted_average() {
+        // square fan around a centre: symmetric weights put the centre at the mean
+        let p = Point::new;
+        let pts = vec![p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.), p(1., 1.)];
+        let tris = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+        let fixed = [true, true, true, true, false];
+        let mut h = Harmonic::new(&tris, 5, &fixed).unwrap();
+        let mut out = vec![p(0., 0.), p(4., 0.), p(4., 4.), p(0., 6.), p(0., 0.)];
+        h.solve(&pts, &mut out).unwrap();
+        assert!(out[4].distance(p(2.0, 2.5)) < 1e-12, "{}", out[4]);
+    }
+}
