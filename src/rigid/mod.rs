@@ -1,1 +1,211 @@
-//! Disc-based rigidity-preserving interpolation with globally consistent rotation (§4.1).
+//! Disc-based rigidity-preserving interpolation with globally consistent rotation (§4.1), and the
+//! baselines it is compared with.
+//!
+//! Given compatible source and target point sets, an [`Interpolator`] is set up once and then
+//! evaluated at any `t ∈ [0, 1]`:
+//!
+//! - [`Method::Disc`] (the paper's method): per-disc local rotations and scales
+//!   ([`disc`]), made globally consistent for turns beyond 180° ([`rotation`], §4.1.1), assembled
+//!   by the least squares of eq. (1) whose matrix is factored once ([`assembly`]).
+//! - [`Method::Triangle`]: triangle-to-triangle as-rigid-as-possible interpolation
+//!   ([`triangle`]), sensitive to thin triangles.
+//! - [`Method::Linear`]: straight-line vertex paths ([`linear`]).
+//!
+//! All methods reproduce the source at `t = 0` and the target at `t = 1`. Each connected part
+//! moves its vertex centroid along the straight line between its end centroids.
+
+mod assembly;
+mod disc;
+mod linear;
+mod rotation;
+mod triangle;
+
+pub use disc::DiscRigid;
+
+use crate::error::{Error, Result};
+use crate::geometry::Point;
+use disc::FrameScratch;
+use rayon::prelude::*;
+use triangle::TriangleRigid;
+
+/// Which interpolation to use (CLI: `--method disc|triangle|linear`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Disc-based rigidity-preserving interpolation with consistent rotation (§4.1, §4.1.1).
+    #[default]
+    Disc,
+    /// Triangle-based as-rigid-as-possible interpolation (Alexa et al. 2000), the baseline the
+    /// paper compares with (Fig. 13).
+    Triangle,
+    /// Linear vertex interpolation.
+    Linear,
+}
+
+#[derive(Debug)]
+enum Kind {
+    Disc(DiscRigid),
+    Triangle(TriangleRigid, Vec<f64>),
+    Linear(Vec<Point>, Vec<Point>, Vec<f64>),
+}
+
+/// An interpolation between two compatible point sets, set up once (local transformations,
+/// consistent rotations, factored normal equations) and evaluated per frame.
+#[derive(Debug)]
+pub struct Interpolator {
+    kind: Kind,
+    n: usize,
+}
+
+/// Per-thread scratch buffers for [`Interpolator::at`], so evaluating a frame does not allocate.
+/// Get one from [`Interpolator::workspace`]; use it only with the interpolator that made it.
+#[derive(Debug)]
+pub struct Workspace {
+    scratch: Option<FrameScratch>,
+}
+
+fn check_triangles(triangles: &[[u32; 3]], n: usize) -> Result<()> {
+    for (f, t) in triangles.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return Err(Error::input(
+                "<source>",
+                format!("triangle {f} has invalid vertex indices {t:?} ({n} vertices)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Interpolator {
+    /// Sets up `method` for compatible triangle meshes (one connectivity `triangles`,
+    /// counter-clockwise in the source). The disc method uses one-ring discs (§4.1).
+    ///
+    /// Errors (input errors on `"<source>"`/`"<target>"`): mismatched lengths, non-finite
+    /// coordinates, invalid triangle indices, coincident neighbouring points, and for the triangle
+    /// method zero-area source triangles.
+    pub fn new(
+        method: Method,
+        source: &[Point],
+        target: &[Point],
+        triangles: &[[u32; 3]],
+    ) -> Result<Self> {
+        disc::validate_points(source, target)?;
+        let n = source.len();
+        check_triangles(triangles, n)?;
+        let kind = match method {
+            Method::Disc => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                Kind::Disc(DiscRigid::new(source, target, &rings)?)
+            }
+            Method::Triangle => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                let angles = linear::best_fit_angles(source, target, &rings);
+                Kind::Triangle(TriangleRigid::new(source, target, triangles)?, angles)
+            }
+            Method::Linear => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                let angles = linear::best_fit_angles(source, target, &rings);
+                Kind::Linear(source.to_vec(), target.to_vec(), angles)
+            }
+        };
+        Ok(Interpolator { kind, n })
+    }
+
+    /// The disc method over general compatible point sets with given neighbour lists (`discs[i]`
+    /// = indices of the points in `p_i`'s disc, without `i`), e.g. the barycenter mesh of the
+    /// shape model (§5), whose discs are "all other points".
+    pub fn from_discs(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
+        let d = DiscRigid::new(source, target, discs)?;
+        Ok(Interpolator {
+            n: d.vertex_count(),
+            kind: Kind::Disc(d),
+        })
+    }
+
+    /// Number of vertices of every frame.
+    pub fn vertex_count(&self) -> usize {
+        self.n
+    }
+
+    /// The method this interpolator runs.
+    pub fn method(&self) -> Method {
+        match self.kind {
+            Kind::Disc(_) => Method::Disc,
+            Kind::Triangle(..) => Method::Triangle,
+            Kind::Linear(..) => Method::Linear,
+        }
+    }
+
+    /// Fresh scratch buffers for [`Interpolator::at`] (one per thread).
+    pub fn workspace(&self) -> Workspace {
+        Workspace {
+            scratch: match &self.kind {
+                Kind::Disc(d) => Some(d.scratch()),
+                Kind::Triangle(tr, _) => Some(tr.scratch()),
+                Kind::Linear(..) => None,
+            },
+        }
+    }
+
+    /// Vertices at `t ∈ [0, 1]` into `out` (`out.len() == vertex_count()`), without allocating.
+    ///
+    /// # Panics
+    /// If `out` has the wrong length or `ws` comes from a different interpolator (programming
+    /// errors, not data errors).
+    pub fn at(&self, t: f64, out: &mut [Point], ws: &mut Workspace) {
+        assert_eq!(
+            out.len(),
+            self.n,
+            "output buffer length must equal vertex_count()"
+        );
+        match &self.kind {
+            Kind::Disc(d) => d.at(
+                t,
+                out,
+                ws.scratch.as_mut().expect("workspace of this interpolator"),
+            ),
+            Kind::Triangle(tr, _) => tr.at(
+                t,
+                out,
+                ws.scratch.as_mut().expect("workspace of this interpolator"),
+            ),
+            Kind::Linear(p, q, _) => linear::blend(p, q, t, out),
+        }
+    }
+
+    /// Vertices at `t` in a new vector.
+    pub fn at_vec(&self, t: f64) -> Vec<Point> {
+        let mut out = vec![Point::ZERO; self.n];
+        self.at(t, &mut out, &mut self.workspace());
+        out
+    }
+
+    /// Many frames in parallel (rayon), one workspace per worker: `frames[k]` is the frame at
+    /// `ts[k]`.
+    pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
+        ts.par_iter()
+            .map_init(
+                || self.workspace(),
+                |ws, &t| {
+                    let mut out = vec![Point::ZERO; self.n];
+                    self.at(t, &mut out, ws);
+                    out
+                },
+            )
+            .collect()
+    }
+
+    /// Rotation angle (radians) of point `i`'s neighbourhood. Disc method: the consistent
+    /// rotation (after the 2kπ corrections of §4.1.1) averaged over the disc's local
+    /// transformations; the shape model (§5) uses it to pick each curve's rotation branch
+    /// consistently with the barycenter mesh. Other methods: the best-fit (least-squares) angle
+    /// of the one-ring, in (−π, π].
+    pub fn rotation_at(&self, i: usize) -> f64 {
+        match &self.kind {
+            Kind::Disc(d) => d.rotation_at(i),
+            Kind::Triangle(_, a) | Kind::Linear(_, _, a) => a[i],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
