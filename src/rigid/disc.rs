@@ -15,11 +15,18 @@
 //!
 //! ## Reduced rotation graph
 //!
-//! §4.1.1 builds a graph with a node per *directed* transformation. Since both directions of an
-//! edge carry the same angle, we use one node per undirected edge and link two edges when they
-//! share a vertex (two transformations of one disc, or of adjacent discs). The consistent angles
-//! agree with the paper's full graph; the test `reduced_rotation_graph_matches_the_full_graph`
-//! checks it, including turns beyond 180°.
+//! §4.1.1 builds a graph with a node per *directed* transformation, linking `(i₁, j₁)` and
+//! `(i₂, j₂)` when `p_j₁ ∈ P_j₂` or `p_j₂ ∈ P_j₁` (about 36 links per transformation on a mesh).
+//! Since both directions of an edge carry the same angle, we use one node per undirected edge and
+//! link two edges when they share a vertex (about 5 links per edge). Why the results agree: two
+//! angle assignments that are both consistent on one connected graph (every pair of linked
+//! transformations within π) and leave the same root uncorrected are equal — their difference is
+//! a multiple of 2π that cannot change across a link, and it is zero at the root. Both graphs pick
+//! the same root (smallest `|α|`, lowest index: the node order of the full graph lists each edge
+//! first at its smaller end point, as the sorted edge list does). So for deformations whose
+//! neighbouring rotations differ by less than π — the case §4.1.1 is designed for — both graphs
+//! give the same angles; `reduced_rotation_graph_matches_the_full_graph` checks it on bends and
+//! turns past 180°.
 
 use super::assembly::{component_centroids, FactoredSystem, SolveScratch, SystemBuilder};
 use super::rotation::consistent_angles;
@@ -183,10 +190,24 @@ struct EdgeTerm {
     s1: f64,
 }
 
+/// A constant extra row of the least squares, `weight · ‖Σ_k c_k v_k − J‖²`, whose target `J`
+/// changes per frame: the barycentric rows `C_k V − J'_k` of eq. (2) (skeleton control, §4.2).
+/// Its weight is relative to eq. (1) as assembled here (each mesh edge counted in both
+/// directions). A part of the shape that extra rows reach is positioned by them instead of by
+/// the centroid rule.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ExtraRow {
+    /// `(point index, coefficient)` pairs, e.g. a triangle's barycentric coordinates.
+    pub(crate) coeffs: Vec<(u32, f64)>,
+    /// Positive weight of the row.
+    pub(crate) weight: f64,
+}
+
 /// The disc method, set up: consistent local transformations and the factored eq. (1).
 #[derive(Debug)]
 pub struct DiscRigid {
     terms: Vec<EdgeTerm>,
+    extra: Vec<ExtraRow>,
     system: FactoredSystem,
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
@@ -204,12 +225,37 @@ impl DiscRigid {
     /// Sets up the disc method for compatible point sets and their discs (§4.1): local
     /// transformations, consistent rotation (§4.1.1), normal equations factored once.
     pub fn new(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
+        Self::with_extra_rows(source, target, discs, Vec::new())
+    }
+
+    /// [`DiscRigid::new`] with constant extra rows added to the matrix before it is factored
+    /// (the hook for eq. (2)); evaluate with [`DiscRigid::at_with_targets`].
+    pub(crate) fn with_extra_rows(
+        source: &[Point],
+        target: &[Point],
+        discs: &[Vec<u32>],
+        extra: Vec<ExtraRow>,
+    ) -> Result<Self> {
         let local = LocalTransforms::new(source, target, discs)?;
         let n = source.len();
         let alpha = consistent_angles(&local.alpha, &local.rotation_links(n));
         let mut builder = SystemBuilder::new(n);
         for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
             builder.add_edge(i, j, w);
+        }
+        for (r, row) in extra.iter().enumerate() {
+            let bad = row.coeffs.is_empty()
+                || !(row.weight > 0.0 && row.weight.is_finite())
+                || row
+                    .coeffs
+                    .iter()
+                    .any(|&(v, c)| v as usize >= n || !c.is_finite());
+            if bad {
+                return Err(Error::internal(format!(
+                    "extra row {r} has no coefficients, a bad weight or a bad point index"
+                )));
+            }
+            builder.add_extra_row(&row.coeffs, row.weight);
         }
         let system = builder.factor()?;
         let terms = local
@@ -224,23 +270,34 @@ impl DiscRigid {
                 s1: local.scale[k] - 1.0,
             })
             .collect();
-        // rotation_at: mean consistent angle of the transformations of each disc.
-        let mut sum = vec![(0.0f64, 0.0f64); n];
-        for (k, &(i, j)) in local.edges.iter().enumerate() {
-            for v in [i, j] {
-                sum[v as usize].0 += alpha[k];
-                sum[v as usize].1 += 1.0;
-            }
-        }
-        let rotation = sum
+        // rotation_at: mean consistent angle of the transformations L_(i,j), j ∈ P_i.
+        let rotation = discs
             .iter()
-            .map(|&(s, c)| if c > 0.0 { s / c } else { 0.0 })
+            .enumerate()
+            .map(|(i, disc)| {
+                let mut disc = disc.clone();
+                disc.sort_unstable();
+                disc.dedup();
+                let sum: f64 = disc
+                    .iter()
+                    .map(|&j| {
+                        let key = ((i as u32).min(j), (i as u32).max(j));
+                        local.edges.binary_search(&key).map_or(0.0, |k| alpha[k])
+                    })
+                    .sum();
+                if disc.is_empty() {
+                    0.0
+                } else {
+                    sum / disc.len() as f64
+                }
+            })
             .collect();
         let count = system.component_count();
         Ok(DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
             centroid_target: component_centroids(system.components(), count, target),
             terms,
+            extra,
             system,
             rotation,
         })
@@ -265,6 +322,18 @@ impl DiscRigid {
 
     /// Points at `t` into `out` (eq. 1), without allocating.
     pub(crate) fn at(&self, t: f64, out: &mut [Point], ws: &mut FrameScratch) {
+        self.at_with_targets(t, &[], out, ws);
+    }
+
+    /// Points at `t` with the extra rows' targets `targets[r]` (`J` of row `r`; missing targets
+    /// count as the origin), without allocating.
+    pub(crate) fn at_with_targets(
+        &self,
+        t: f64,
+        targets: &[Point],
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+    ) {
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
         let stride = rhs.len() / 2;
@@ -278,6 +347,13 @@ impl DiscRigid {
             rx[e.ri as usize] -= l.x;
             ry[e.ri as usize] -= l.y;
         }
+        for (row, &j) in self.extra.iter().zip(targets) {
+            for &(v, c) in &row.coeffs {
+                let r = self.system.rhs_index(v);
+                rx[r] += row.weight * c * j.x;
+                ry[r] += row.weight * c * j.y;
+            }
+        }
         for ((c, &s), &g) in ws
             .centroids
             .iter_mut()
@@ -287,5 +363,43 @@ impl DiscRigid {
             *c = s * (1.0 - t) + g * t;
         }
         self.system.solve(&mut ws.solve, &ws.centroids, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Eq. (2)'s hook: one extra row holding the midpoint of an edge at a moving target. The
+    /// shape is the unit square, target = source, so eq. (1) wants a rigid square; with the
+    /// row's target moved by `m`, the whole square follows it by `m`.
+    #[test]
+    fn extra_rows_steer_the_frame() {
+        let src = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+        ];
+        let discs: Vec<Vec<u32>> = (0..4u32)
+            .map(|i| (0..4).filter(|&j| j != i).collect())
+            .collect();
+        let row = ExtraRow {
+            coeffs: vec![(0, 0.5), (1, 0.5)],
+            weight: 3.0,
+        };
+        let d = DiscRigid::with_extra_rows(&src, &src, &discs, vec![row]).unwrap();
+        let mut ws = d.scratch();
+        let mut out = vec![Point::ZERO; 4];
+        let m = Point::new(5.0, -2.0);
+        d.at_with_targets(0.5, &[Point::new(0.5, 0.0) + m], &mut out, &mut ws);
+        for (a, b) in out.iter().zip(&src) {
+            assert!(a.distance(*b + m) < 1e-12, "{a} vs {}", *b + m);
+        }
+        let bad = ExtraRow {
+            coeffs: vec![(9, 1.0)],
+            weight: 1.0,
+        };
+        assert!(DiscRigid::with_extra_rows(&src, &src, &discs, vec![bad]).is_err());
     }
 }

@@ -72,6 +72,14 @@ fn bend(points: &[Point], length: f64, bend: f64, turn: f64) -> Vec<Point> {
         .collect()
 }
 
+#[test]
+fn interpolators_are_shareable_between_threads() {
+    fn check<T: Send + Sync>() {}
+    check::<Interpolator>();
+    fn send<T: Send>() {}
+    send::<Workspace>();
+}
+
 const METHODS: [Method; 3] = [Method::Disc, Method::Triangle, Method::Linear];
 
 #[test]
@@ -431,47 +439,4 @@ proptest! {
             }
         }
     }
-}
-
-#[test]
-#[ignore]
-fn timing_split() {
-    let (src, tris) = grid(27, 26, 1.0);
-    let tgt = bend(&src, 26.0, 1.5, 2.0);
-    let it = DiscRigid::new(&src, &tgt, &crate::mesh::one_rings(&tris, src.len())).unwrap();
-    let mut ws = it.scratch();
-    let mut out = vec![Point::ZERO; src.len()];
-    let n = 2000;
-    let best = |f: &mut dyn FnMut() -> f64| {
-        (0..7)
-            .map(|_| {
-                let t0 = std::time::Instant::now();
-                let a = f();
-                std::hint::black_box(a);
-                t0.elapsed() / n
-            })
-            .min()
-            .unwrap()
-    };
-    eprintln!(
-        "full {:?}",
-        best(&mut || {
-            for k in 0..n {
-                it.at(0.37 + k as f64 * 1e-6, &mut out, &mut ws);
-            }
-            out[3].x
-        })
-    );
-    eprintln!(
-        "std sincos x2000 {:?}",
-        best(&mut || {
-            let mut acc = 0.0;
-            for k in 0..n {
-                for e in 0..2000 {
-                    acc += ((0.37 + k as f64 * 1e-6) * (e as f64 * 0.001)).sin_cos().0;
-                }
-            }
-            acc
-        })
-    );
 }
