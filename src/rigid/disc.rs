@@ -205,7 +205,7 @@ pub(crate) struct ExtraRow {
 
 /// The disc method, set up: consistent local transformations and the factored eq. (1).
 #[derive(Debug)]
-pub struct DiscRigid {
+pub(crate) struct DiscRigid {
     terms: Vec<EdgeTerm>,
     extra: Vec<ExtraRow>,
     system: FactoredSystem,
@@ -224,7 +224,7 @@ pub(crate) struct FrameScratch {
 impl DiscRigid {
     /// Sets up the disc method for compatible point sets and their discs (§4.1): local
     /// transformations, consistent rotation (§4.1.1), normal equations factored once.
-    pub fn new(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
+    pub(crate) fn new(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
         Self::with_extra_rows(source, target, discs, Vec::new())
     }
 
@@ -304,12 +304,12 @@ impl DiscRigid {
     }
 
     /// Number of points.
-    pub fn vertex_count(&self) -> usize {
+    pub(crate) fn vertex_count(&self) -> usize {
         self.system.vertex_count()
     }
 
     /// Mean consistent rotation angle of point `i`'s disc (radians).
-    pub fn rotation_at(&self, i: usize) -> f64 {
+    pub(crate) fn rotation_at(&self, i: usize) -> f64 {
         self.rotation[i]
     }
 

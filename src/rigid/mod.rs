@@ -5,11 +5,11 @@
 //! evaluated at any `t ∈ [0, 1]`:
 //!
 //! - [`Method::Disc`] (the paper's method): per-disc local rotations and scales
-//!   ([`disc`]), made globally consistent for turns beyond 180° ([`rotation`], §4.1.1), assembled
-//!   by the least squares of eq. (1) whose matrix is factored once ([`assembly`]).
+//!   (`disc.rs`), made globally consistent for turns beyond 180° (`rotation.rs`, §4.1.1), assembled
+//!   by the least squares of eq. (1) whose matrix is factored once (`assembly.rs`).
 //! - [`Method::Triangle`]: triangle-to-triangle as-rigid-as-possible interpolation
-//!   ([`triangle`]), sensitive to thin triangles.
-//! - [`Method::Linear`]: straight-line vertex paths ([`linear`]).
+//!   (`triangle.rs`), the classical baseline of Fig. 13.
+//! - [`Method::Linear`]: straight-line vertex paths (`linear.rs`).
 //!
 //! All methods reproduce the source at `t = 0` and the target at `t = 1`. Each connected part
 //! moves its vertex centroid along the straight line between its end centroids.
@@ -20,11 +20,9 @@ mod linear;
 mod rotation;
 mod triangle;
 
-pub use disc::DiscRigid;
-
 use crate::error::{Error, Result};
 use crate::geometry::Point;
-use disc::FrameScratch;
+use disc::{DiscRigid, FrameScratch};
 use rayon::prelude::*;
 use triangle::TriangleRigid;
 
