@@ -30,6 +30,7 @@
 
 use super::assembly::{component_centroids, FactoredSystem, SolveScratch, SystemBuilder};
 use super::rotation::consistent_angles;
+use super::sincos::sin_cos_many;
 use crate::error::{Error, Result};
 use crate::geometry::{bounding_box, Point};
 
@@ -184,8 +185,6 @@ struct EdgeTerm {
     rj: u32,
     /// `weight · (p_j − p_i)`.
     wd: Point,
-    /// Consistent rotation angle (§4.1.1).
-    alpha: f64,
     /// `s − 1`, so the scale at `t` is `1 + t·(s − 1)`.
     s1: f64,
 }
@@ -207,6 +206,8 @@ pub(crate) struct ExtraRow {
 #[derive(Debug)]
 pub(crate) struct DiscRigid {
     terms: Vec<EdgeTerm>,
+    /// Consistent rotation angle of each term (§4.1.1).
+    alpha: Vec<f64>,
     extra: Vec<ExtraRow>,
     system: FactoredSystem,
     centroid_source: Vec<Point>,
@@ -219,6 +220,31 @@ pub(crate) struct DiscRigid {
 pub(crate) struct FrameScratch {
     pub(crate) solve: SolveScratch,
     pub(crate) centroids: Vec<Point>,
+    /// Per-term angles at `t`, then their sines and cosines.
+    pub(crate) angle: Vec<f64>,
+    pub(crate) sin: Vec<f64>,
+    pub(crate) cos: Vec<f64>,
+}
+
+impl FrameScratch {
+    /// Scratch for `system` with `terms` rotations per frame.
+    pub(crate) fn new(system: &FactoredSystem, components: usize, terms: usize) -> Self {
+        FrameScratch {
+            solve: system.scratch(),
+            centroids: vec![Point::ZERO; components],
+            angle: vec![0.0; terms],
+            sin: vec![0.0; terms],
+            cos: vec![0.0; terms],
+        }
+    }
+
+    /// Fills `sin`, `cos` with the rotations `R(t·alpha[k])`.
+    pub(crate) fn rotations(&mut self, t: f64, alpha: &[f64]) {
+        for (a, &al) in self.angle.iter_mut().zip(alpha) {
+            *a = t * al;
+        }
+        sin_cos_many(&self.angle, &mut self.sin, &mut self.cos);
+    }
 }
 
 impl DiscRigid {
@@ -266,7 +292,6 @@ impl DiscRigid {
                 ri: system.rhs_index(i) as u32,
                 rj: system.rhs_index(j) as u32,
                 wd: local.d[k] * local.weight[k],
-                alpha: alpha[k],
                 s1: local.scale[k] - 1.0,
             })
             .collect();
@@ -297,6 +322,7 @@ impl DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
             centroid_target: component_centroids(system.components(), count, target),
             terms,
+            alpha,
             extra,
             system,
             rotation,
@@ -314,10 +340,7 @@ impl DiscRigid {
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        FrameScratch {
-            solve: self.system.scratch(),
-            centroids: vec![Point::ZERO; self.centroid_source.len()],
-        }
+        FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
     }
 
     /// Points at `t` into `out` (eq. 1), without allocating.
@@ -334,12 +357,12 @@ impl DiscRigid {
         out: &mut [Point],
         ws: &mut FrameScratch,
     ) {
+        ws.rotations(t, &self.alpha);
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
         let stride = rhs.len() / 2;
         let (rx, ry) = rhs.split_at_mut(stride);
-        for e in &self.terms {
-            let (sn, cs) = (t * e.alpha).sin_cos();
+        for ((e, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
             let f = 1.0 + t * e.s1;
             let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
             rx[e.rj as usize] += l.x;

@@ -18,6 +18,7 @@ mod assembly;
 mod disc;
 mod linear;
 mod rotation;
+mod sincos;
 mod triangle;
 
 use crate::error::{Error, Result};

@@ -25,8 +25,6 @@ struct TriangleTerm {
     rows: [u32; 3],
     /// Rows of the gradient matrix `G = [[-1,-1],[1,0],[0,1]]·P⁻¹`: `g_k` for corner `k`.
     g: [Point; 3],
-    /// Consistent polar rotation angle.
-    theta: f64,
     /// Symmetric stretch `S = [[s00, s01], [s01, s11]]`.
     s: [f64; 3],
 }
@@ -35,6 +33,8 @@ struct TriangleTerm {
 #[derive(Debug)]
 pub(crate) struct TriangleRigid {
     terms: Vec<TriangleTerm>,
+    /// Consistent polar rotation angle of each triangle.
+    theta: Vec<f64>,
     system: FactoredSystem,
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
@@ -104,11 +104,9 @@ impl TriangleRigid {
         let terms = triangles
             .iter()
             .zip(raw)
-            .zip(thetas)
-            .map(|((tri, (g, _, s)), theta)| TriangleTerm {
+            .map(|(tri, (g, _, s))| TriangleTerm {
                 rows: tri.map(|v| system.rhs_index(v) as u32),
                 g,
-                theta,
                 s,
             })
             .collect();
@@ -117,24 +115,22 @@ impl TriangleRigid {
             centroid_source: component_centroids(system.components(), count, source),
             centroid_target: component_centroids(system.components(), count, target),
             terms,
+            theta: thetas,
             system,
         })
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        FrameScratch {
-            solve: self.system.scratch(),
-            centroids: vec![Point::ZERO; self.centroid_source.len()],
-        }
+        FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
     }
 
     pub(crate) fn at(&self, t: f64, out: &mut [Point], ws: &mut FrameScratch) {
+        ws.rotations(t, &self.theta);
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
         let stride = rhs.len() / 2;
         let (rx, ry) = rhs.split_at_mut(stride);
-        for f in &self.terms {
-            let (sn, cs) = (t * f.theta).sin_cos();
+        for ((f, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
             // M = (1 − t)I + tS, then A(t) = R(tθ) M.
             let (m00, m01, m11) = (1.0 - t + t * f.s[0], t * f.s[1], 1.0 - t + t * f.s[2]);
             let a00 = cs * m00 - sn * m01;
