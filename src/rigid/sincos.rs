@@ -5,6 +5,10 @@
 //! straight-line arithmetic the compiler vectorizes, accurate to a few units in the last place:
 //! Cody–Waite reduction by π/2 and the classic minimax polynomials of sin and cos on [−π/4, π/4].
 //! Angles of magnitude 10⁵ or more (or non-finite) fall back to the standard library.
+//!
+//! The constants are the well-known splitting of π/2 and the minimax coefficients published with
+//! fdlibm, written with all their published digits (the compiler rounds them to f64).
+#![allow(clippy::excessive_precision)]
 
 /// Largest |x| reduced here; beyond it `n·PIO2_1` would no longer be exact.
 const MAX_REDUCED: f64 = 1e5;
