@@ -65,7 +65,7 @@ pub(crate) fn sin_cos_many(angles: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     }
     if !all_small {
         for ((&x, s_out), c_out) in angles.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
-            if !(x.abs() < MAX_REDUCED) {
+            if x.is_nan() || x.abs() >= MAX_REDUCED {
                 (*s_out, *c_out) = x.sin_cos();
             }
         }
