@@ -1,1 +1,65 @@
-fn main() {}
+//! Set-up and per-frame cost of the rigid interpolation methods (§4.1) on synthetic grids with a
+//! smooth non-rigid target (the strip bent along an arc and rotated).
+//!
+//! Run: `cargo bench --bench rigid -- --warm-up-time 1 --measurement-time 3`
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use crmorph::rigid::{Interpolator, Method};
+use crmorph::Point;
+use std::hint::black_box;
+
+/// `nx × ny` grid, unit spacing, counter-clockwise triangles.
+fn grid(nx: usize, ny: usize) -> (Vec<Point>, Vec<[u32; 3]>) {
+    let pts = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| Point::new(i as f64, j as f64)))
+        .collect();
+    let mut tris = Vec::with_capacity(2 * (nx - 1) * (ny - 1));
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let v = |i: usize, j: usize| (j * nx + i) as u32;
+            tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+            tris.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    (pts, tris)
+}
+
+/// Bend along an arc turning by 1.5 rad over the grid's width, then rotate by 2 rad: local
+/// rotations from 2.0 to 3.5 rad, across the ±π wrap.
+fn target(src: &[Point], width: f64) -> Vec<Point> {
+    let r = 2.0 * width / 1.5;
+    let rot = Point::from_angle(2.0);
+    src.iter()
+        .map(|p| {
+            let phi = p.x / r;
+            rot.rotate(Point::new((r - p.y) * phi.sin(), r - (r - p.y) * phi.cos()))
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    for (nx, ny) in [(27, 26), (32, 32), (100, 100), (317, 316)] {
+        let (src, tris) = grid(nx, ny);
+        let tgt = target(&src, nx as f64);
+        let n = src.len();
+        let mut g = c.benchmark_group("rigid");
+        if n > 50_000 {
+            g.sample_size(10);
+        }
+        for (name, m) in [("disc", Method::Disc), ("triangle", Method::Triangle)] {
+            g.bench_with_input(BenchmarkId::new(format!("setup/{name}"), n), &n, |b, _| {
+                b.iter(|| Interpolator::new(m, black_box(&src), black_box(&tgt), &tris).unwrap())
+            });
+            let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+            let mut ws = it.workspace();
+            let mut out = vec![Point::ZERO; n];
+            g.bench_with_input(BenchmarkId::new(format!("frame/{name}"), n), &n, |b, _| {
+                b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
+            });
+        }
+        g.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

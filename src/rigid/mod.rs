@@ -1,201 +1,210 @@
-//! Disc-based rigidity-preserving interpolation with globally consistent rotation (§4.1).
+//! Disc-based rigidity-preserving interpolation with globally consistent rotation (§4.1), and the
+//! baselines it is compared with.
 //!
-//! PLACEHOLDER (mapping branch): a small dense implementation of the agreed API, good enough for
-//! the few points of the barycenter mesh (§5). It is replaced by the real sparse implementation at
-//! merge time.
+//! Given compatible source and target point sets, an [`Interpolator`] is set up once and then
+//! evaluated at any `t ∈ [0, 1]`:
+//!
+//! - [`Method::Disc`] (the paper's method): per-disc local rotations and scales
+//!   (`disc.rs`), made globally consistent for turns beyond 180° (`rotation.rs`, §4.1.1), assembled
+//!   by the least squares of eq. (1) whose matrix is factored once (`assembly.rs`).
+//! - [`Method::Triangle`]: triangle-to-triangle as-rigid-as-possible interpolation
+//!   (`triangle.rs`), the classical baseline of Fig. 13.
+//! - [`Method::Linear`]: straight-line vertex paths (`linear.rs`).
+//!
+//! All methods reproduce the source at `t = 0` and the target at `t = 1`. Each connected part
+//! moves its vertex centroid along the straight line between its end centroids.
 
+mod assembly;
+mod disc;
+mod linear;
+mod rotation;
+mod sincos;
+mod triangle;
+
+use crate::error::{Error, Result};
 use crate::geometry::Point;
-use crate::{Error, Result};
-use std::f64::consts::PI;
+use disc::{DiscRigid, FrameScratch};
+use rayon::prelude::*;
+use triangle::TriangleRigid;
 
-/// Local transformation of one disc edge `(i, j)`: rotation angle and scale from `p_j − p_i` to
-/// `q_j − q_i` (§4.1).
-#[derive(Debug, Clone, Copy)]
-struct LocalTransform {
-    i: usize,
-    j: usize,
-    alpha: f64,
-    scale: f64,
+/// Which interpolation to use (CLI: `--method disc|triangle|linear`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Disc-based rigidity-preserving interpolation with consistent rotation (§4.1, §4.1.1).
+    #[default]
+    Disc,
+    /// Triangle-based as-rigid-as-possible interpolation (Alexa et al. 2000), the baseline the
+    /// paper compares with (Fig. 13).
+    Triangle,
+    /// Linear vertex interpolation.
+    Linear,
 }
 
-/// Precomputed interpolation between two compatible point sets, with disc neighbourhoods.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
+enum Kind {
+    Disc(DiscRigid),
+    Triangle(TriangleRigid, Vec<f64>),
+    Linear(Vec<Point>, Vec<Point>, Vec<f64>),
+}
+
+/// An interpolation between two compatible point sets, set up once (local transformations,
+/// consistent rotations, factored normal equations) and evaluated per frame.
+#[derive(Debug)]
 pub struct Interpolator {
-    source: Vec<Point>,
-    transforms: Vec<LocalTransform>,
-    disc_rotation: Vec<f64>,
-    centroid: (Point, Point),
-    /// Row-major inverse of the regularized normal matrix `L + 1 1ᵀ` (n × n).
-    inverse: Vec<f64>,
+    kind: Kind,
+    n: usize,
 }
 
-/// Scratch buffers for [`Interpolator::at`].
-#[derive(Debug, Clone, Default)]
+/// Per-thread scratch buffers for [`Interpolator::at`], so evaluating a frame does not allocate.
+/// Get one from [`Interpolator::workspace`]; use it only with the interpolator that made it.
+#[derive(Debug)]
 pub struct Workspace {
-    rhs: Vec<Point>,
+    scratch: Option<FrameScratch>,
 }
 
-/// `a + 2kπ` closest to `reference`.
-fn branch_near(a: f64, reference: f64) -> f64 {
-    a + 2.0 * PI * ((reference - a) / (2.0 * PI)).round()
+fn check_triangles(triangles: &[[u32; 3]], n: usize) -> Result<()> {
+    for (f, t) in triangles.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return Err(Error::input(
+                "<source>",
+                format!("triangle {f} has invalid vertex indices {t:?} ({n} vertices)"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 impl Interpolator {
-    /// Builds the interpolator: local transformations per disc edge, rotations made consistent
-    /// by propagation over a spanning tree of the disc graph, and the factored normal equations of
-    /// eq. (1).
-    pub fn from_discs(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
+    /// Sets up `method` for compatible triangle meshes (one connectivity `triangles`,
+    /// counter-clockwise in the source). The disc method uses one-ring discs (§4.1).
+    ///
+    /// Errors (input errors on `"<source>"`/`"<target>"`): mismatched lengths, non-finite
+    /// coordinates, invalid triangle indices, coincident neighbouring points, and for the triangle
+    /// method zero-area source triangles.
+    pub fn new(
+        method: Method,
+        source: &[Point],
+        target: &[Point],
+        triangles: &[[u32; 3]],
+    ) -> Result<Self> {
+        disc::validate_points(source, target)?;
         let n = source.len();
-        if target.len() != n || discs.len() != n || n == 0 {
-            return Err(Error::internal("interpolator: mismatched point sets"));
-        }
-        let mut transforms = Vec::new();
-        let mut per_disc: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for (i, disc) in discs.iter().enumerate() {
-            for &j in disc {
-                let j = j as usize;
-                if j >= n || j == i {
-                    return Err(Error::internal("interpolator: bad disc index"));
-                }
-                let (a, b) = (source[j] - source[i], target[j] - target[i]);
-                if a.length() == 0.0 || b.length() == 0.0 {
-                    continue;
-                }
-                let alpha = a.perp_dot(b).atan2(a.dot(b));
-                per_disc[i].push(transforms.len());
-                transforms.push(LocalTransform {
-                    i,
-                    j,
-                    alpha,
-                    scale: b.length() / a.length(),
-                });
+        check_triangles(triangles, n)?;
+        let kind = match method {
+            Method::Disc => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                Kind::Disc(DiscRigid::new(source, target, &rings)?)
             }
-        }
-        // Disc rotation: circular mean of its edges' angles; then made consistent by breadth-first
-        // propagation from the disc with the smallest rotation magnitude.
-        let mut disc_rotation: Vec<f64> = per_disc
-            .iter()
-            .map(|ks| {
-                let (s, c) = ks.iter().fold((0.0, 0.0), |(s, c), &k| {
-                    (s + transforms[k].alpha.sin(), c + transforms[k].alpha.cos())
-                });
-                if ks.is_empty() {
-                    0.0
-                } else {
-                    s.atan2(c)
-                }
-            })
-            .collect();
-        let mut done = vec![false; n];
-        while let Some(root) = (0..n)
-            .filter(|&i| !done[i])
-            .min_by(|&a, &b| disc_rotation[a].abs().total_cmp(&disc_rotation[b].abs()))
-        {
-            done[root] = true;
-            let mut queue = std::collections::VecDeque::from([root]);
-            while let Some(i) = queue.pop_front() {
-                for &j in &discs[i] {
-                    let j = j as usize;
-                    if !done[j] {
-                        done[j] = true;
-                        disc_rotation[j] = branch_near(disc_rotation[j], disc_rotation[i]);
-                        queue.push_back(j);
-                    }
-                }
+            Method::Triangle => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                let angles = linear::best_fit_angles(source, target, &rings);
+                Kind::Triangle(TriangleRigid::new(source, target, triangles)?, angles)
             }
-        }
-        for t in &mut transforms {
-            t.alpha = branch_near(t.alpha, disc_rotation[t.i]);
-        }
-        // Normal matrix of Σ |(v_j − v_i) − L_ij|², regularized with 1 1ᵀ to fix the centroid.
-        let mut a = vec![1.0; n * n];
-        for t in &transforms {
-            let (i, j) = (t.i, t.j);
-            a[i * n + i] += 1.0;
-            a[j * n + j] += 1.0;
-            a[i * n + j] -= 1.0;
-            a[j * n + i] -= 1.0;
-        }
-        let inverse = invert(&a, n)
-            .ok_or_else(|| Error::internal("interpolator: disc graph is not connected"))?;
-        let c0 = crate::geometry::centroid(source);
-        let c1 = crate::geometry::centroid(target);
+            Method::Linear => {
+                let rings = crate::mesh::one_rings(triangles, n);
+                let angles = linear::best_fit_angles(source, target, &rings);
+                Kind::Linear(source.to_vec(), target.to_vec(), angles)
+            }
+        };
+        Ok(Interpolator { kind, n })
+    }
+
+    /// The disc method over general compatible point sets with given neighbour lists (`discs[i]`
+    /// = indices of the points in `p_i`'s disc, without `i`), e.g. the barycenter mesh of the
+    /// shape model (§5), whose discs are "all other points".
+    pub fn from_discs(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
+        let d = DiscRigid::new(source, target, discs)?;
         Ok(Interpolator {
-            source: source.to_vec(),
-            transforms,
-            disc_rotation,
-            centroid: (c0, c1),
-            inverse,
+            n: d.vertex_count(),
+            kind: Kind::Disc(d),
         })
     }
 
-    /// A scratch workspace for [`Interpolator::at`].
+    /// Number of vertices of every frame.
+    pub fn vertex_count(&self) -> usize {
+        self.n
+    }
+
+    /// The method this interpolator runs.
+    pub fn method(&self) -> Method {
+        match self.kind {
+            Kind::Disc(_) => Method::Disc,
+            Kind::Triangle(..) => Method::Triangle,
+            Kind::Linear(..) => Method::Linear,
+        }
+    }
+
+    /// Fresh scratch buffers for [`Interpolator::at`] (one per thread).
     pub fn workspace(&self) -> Workspace {
         Workspace {
-            rhs: vec![Point::ZERO; self.source.len()],
+            scratch: match &self.kind {
+                Kind::Disc(d) => Some(d.scratch()),
+                Kind::Triangle(tr, _) => Some(tr.scratch()),
+                Kind::Linear(..) => None,
+            },
         }
     }
 
-    /// Positions at time `t` (0 = source, 1 = target) into `out`.
+    /// Vertices at `t ∈ [0, 1]` into `out` (`out.len() == vertex_count()`), without allocating.
+    ///
+    /// # Panics
+    /// If `out` has the wrong length or `ws` comes from a different interpolator (programming
+    /// errors, not data errors).
     pub fn at(&self, t: f64, out: &mut [Point], ws: &mut Workspace) {
-        let n = self.source.len();
-        ws.rhs.clear();
-        ws.rhs.resize(n, Point::ZERO);
-        for lt in &self.transforms {
-            let d = self.source[lt.j] - self.source[lt.i];
-            let (s, c) = (t * lt.alpha).sin_cos();
-            let l = Point::new(c * d.x - s * d.y, s * d.x + c * d.y) * (1.0 - t + t * lt.scale);
-            ws.rhs[lt.j] += l;
-            ws.rhs[lt.i] -= l;
-        }
-        let c = self.centroid.0 * (1.0 - t) + self.centroid.1 * t;
-        for r in &mut ws.rhs {
-            *r += c * n as f64;
-        }
-        for (i, o) in out.iter_mut().enumerate().take(n) {
-            *o = (0..n).map(|k| ws.rhs[k] * self.inverse[i * n + k]).sum();
+        assert_eq!(
+            out.len(),
+            self.n,
+            "output buffer length must equal vertex_count()"
+        );
+        match &self.kind {
+            Kind::Disc(d) => d.at(
+                t,
+                out,
+                ws.scratch.as_mut().expect("workspace of this interpolator"),
+            ),
+            Kind::Triangle(tr, _) => tr.at(
+                t,
+                out,
+                ws.scratch.as_mut().expect("workspace of this interpolator"),
+            ),
+            Kind::Linear(p, q, _) => linear::blend(p, q, t, out),
         }
     }
 
-    /// Consistent rotation (radians) of point `i`'s disc.
+    /// Vertices at `t` in a new vector.
+    pub fn at_vec(&self, t: f64) -> Vec<Point> {
+        let mut out = vec![Point::ZERO; self.n];
+        self.at(t, &mut out, &mut self.workspace());
+        out
+    }
+
+    /// Many frames in parallel (rayon), one workspace per worker: `frames[k]` is the frame at
+    /// `ts[k]`.
+    pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
+        ts.par_iter()
+            .map_init(
+                || self.workspace(),
+                |ws, &t| {
+                    let mut out = vec![Point::ZERO; self.n];
+                    self.at(t, &mut out, ws);
+                    out
+                },
+            )
+            .collect()
+    }
+
+    /// Rotation angle (radians) of point `i`'s neighbourhood. Disc method: the consistent
+    /// rotation (after the 2kπ corrections of §4.1.1) averaged over the disc's local
+    /// transformations; the shape model (§5) uses it to pick each curve's rotation branch
+    /// consistently with the barycenter mesh. Other methods: the best-fit (least-squares) angle
+    /// of the one-ring, in (−π, π].
     pub fn rotation_at(&self, i: usize) -> f64 {
-        self.disc_rotation[i]
+        match &self.kind {
+            Kind::Disc(d) => d.rotation_at(i),
+            Kind::Triangle(_, a) | Kind::Linear(_, _, a) => a[i],
+        }
     }
 }
 
-/// Gauss–Jordan inverse with partial pivoting of a small dense matrix.
-fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
-    let mut m = a.to_vec();
-    let mut inv = vec![0.0; n * n];
-    for i in 0..n {
-        inv[i * n + i] = 1.0;
-    }
-    for col in 0..n {
-        let piv =
-            (col..n).max_by(|&x, &y| m[x * n + col].abs().total_cmp(&m[y * n + col].abs()))?;
-        if m[piv * n + col].abs() < 1e-12 {
-            return None;
-        }
-        for k in 0..n {
-            m.swap(col * n + k, piv * n + k);
-            inv.swap(col * n + k, piv * n + k);
-        }
-        let d = m[col * n + col];
-        for k in 0..n {
-            m[col * n + k] /= d;
-            inv[col * n + k] /= d;
-        }
-        for r in 0..n {
-            if r != col {
-                let f = m[r * n + col];
-                if f != 0.0 {
-                    for k in 0..n {
-                        m[r * n + k] -= f * m[col * n + k];
-                        inv[r * n + k] -= f * inv[col * n + k];
-                    }
-                }
-            }
-        }
-    }
-    Some(inv)
-}
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,417 @@
+//! Assembly of local transformations into vertex positions: the normal equations of eq. (1),
+//! built and factored once, solved once per frame.
+//!
+//! Every interpolation method in [`crate::rigid`] minimizes a quadratic energy whose matrix does
+//! not depend on `t` — only the right-hand side does. [`SystemBuilder`] collects the matrix terms
+//! (weighted edge differences for the disc method, dense per-triangle blocks for the triangle
+//! baseline, and optional constant extra rows such as the skeleton's barycentric rows of eq. (2));
+//! [`FactoredSystem`] holds the faer sparse Cholesky factor (fill-reducing AMD ordering and
+//! symbolic analysis done once) and solves one frame into a caller's buffer without allocating.
+//!
+//! ## Translation
+//!
+//! Energies built only from vertex *differences* are translation invariant, so their matrix is a
+//! singular graph Laplacian. The rule that makes the system definite and keeps `t = 0` and `t = 1`
+//! exact: in every connected component that no extra row anchors, the vertex with the smallest
+//! index is removed from the system (held at the origin); after the solve, the whole component is
+//! translated so that its vertex centroid lies at the caller's target, which the methods set to
+//! `(1 − t)·c_source + t·c_target` (the component's centroids). When the local transformations are
+//! exactly compatible with the source (t = 0) or the target (t = 1), the solve reproduces that
+//! shape up to a translation and the centroid rule removes the translation.
+
+use crate::error::{Error, Result};
+use crate::geometry::Point;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, MatMut, Par, Side};
+
+/// Collects the constant matrix of a least-squares vertex energy before it is factored.
+///
+/// Terms are given on the full vertex set; [`SystemBuilder::factor`] picks the translation pins
+/// (see the module docs) and drops their rows and columns.
+#[derive(Debug, Clone)]
+pub(crate) struct SystemBuilder {
+    n: usize,
+    /// Upper-triangle entries `(row ≤ col, value)` on full vertex indices; duplicates are summed.
+    entries: Vec<(u32, u32, f64)>,
+    /// Union-find parents for connected components.
+    parent: Vec<u32>,
+    /// Vertices touched by an extra (absolute, non-difference) row.
+    anchored: Vec<bool>,
+}
+
+impl SystemBuilder {
+    /// An empty system over `n` vertices.
+    pub(crate) fn new(n: usize) -> Self {
+        SystemBuilder {
+            n,
+            entries: Vec::new(),
+            parent: (0..n as u32).collect(),
+            anchored: vec![false; n],
+        }
+    }
+
+    fn find(&mut self, mut v: u32) -> u32 {
+        while self.parent[v as usize] != v {
+            let gp = self.parent[self.parent[v as usize] as usize];
+            self.parent[v as usize] = gp;
+            v = gp;
+        }
+        v
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // Smaller root wins, so components are labelled deterministically.
+            let (lo, hi) = (ra.min(rb), ra.max(rb));
+            self.parent[hi as usize] = lo;
+        }
+    }
+
+    fn push(&mut self, a: u32, b: u32, v: f64) {
+        self.entries.push((a.min(b), a.max(b), v));
+    }
+
+    /// Adds the term `w·‖v_j − v_i − c‖²` (for any per-frame constant `c`): the Laplacian
+    /// entries of one weighted edge.
+    pub(crate) fn add_edge(&mut self, i: u32, j: u32, w: f64) {
+        self.push(i, i, w);
+        self.push(j, j, w);
+        self.push(i, j, -w);
+        self.union(i, j);
+    }
+
+    /// Adds a dense symmetric block `M` (row-major `k × k`) on the given vertices: the term
+    /// `xᵀ M x` for the vertices' coordinates `x`. Used by the triangle baseline, whose blocks
+    /// annihilate constants (rows sum to zero), so it is translation invariant like the edges.
+    pub(crate) fn add_block(&mut self, vertices: &[u32], block: &[f64]) {
+        let k = vertices.len();
+        debug_assert_eq!(block.len(), k * k);
+        for a in 0..k {
+            for b in a..k {
+                let v = block[a * k + b];
+                if v != 0.0 || a == b {
+                    self.push(vertices[a], vertices[b], v);
+                }
+            }
+            if a > 0 {
+                self.union(vertices[0], vertices[a]);
+            }
+        }
+    }
+
+    /// Adds a constant extra row `w·‖Σ c_k v_k − J‖²` with a per-frame target `J` (e.g. the
+    /// barycentric rows `C_k V − J'_k` of eq. (2)). An extra row fixes the position of its
+    /// component, so that component gets no translation pin and no centroid translation; the
+    /// caller adds `w·c_k·J` to the right-hand side of each `v_k` per frame.
+    #[allow(dead_code)] // hook for the skeleton control of §4.2 (eq. 2)
+    pub(crate) fn add_extra_row(&mut self, coeffs: &[(u32, f64)], w: f64) {
+        for (a, &(va, ca)) in coeffs.iter().enumerate() {
+            for &(vb, cb) in &coeffs[a..] {
+                self.push(va, vb, w * ca * cb);
+            }
+            self.anchored[va as usize] = true;
+            self.union(coeffs[0].0, va);
+        }
+    }
+
+    /// Chooses the pins, assembles the reduced matrix and factors it (AMD ordering, symbolic
+    /// analysis, numeric `LLᵀ`).
+    pub(crate) fn factor(mut self) -> Result<FactoredSystem> {
+        let n = self.n;
+        let mut comp_of_root = vec![u32::MAX; n];
+        let mut comp = vec![0u32; n];
+        let mut comp_count = 0u32;
+        for v in 0..n as u32 {
+            let r = self.find(v) as usize;
+            if comp_of_root[r] == u32::MAX {
+                comp_of_root[r] = comp_count;
+                comp_count += 1;
+            }
+            comp[v as usize] = comp_of_root[r];
+        }
+        let mut comp_anchored = vec![false; comp_count as usize];
+        for v in 0..n {
+            if self.anchored[v] {
+                comp_anchored[comp[v] as usize] = true;
+            }
+        }
+        // Pin the smallest vertex of every free component (vertices are scanned in order).
+        let mut pinned_comp = comp_anchored.clone();
+        let mut reduced = vec![0u32; n];
+        let mut n_red = 0u32;
+        let mut pins = Vec::new();
+        for v in 0..n {
+            let c = comp[v] as usize;
+            if !pinned_comp[c] {
+                pinned_comp[c] = true;
+                reduced[v] = u32::MAX;
+                pins.push(v as u32);
+            } else {
+                reduced[v] = n_red;
+                n_red += 1;
+            }
+        }
+        let n_red = n_red as usize;
+        for r in reduced.iter_mut() {
+            if *r == u32::MAX {
+                *r = n_red as u32; // the dummy row, ignored by the solve
+            }
+        }
+        let triplets: Vec<Triplet<usize, usize, f64>> = self
+            .entries
+            .iter()
+            .filter_map(|&(a, b, v)| {
+                let (ra, rb) = (reduced[a as usize] as usize, reduced[b as usize] as usize);
+                (ra < n_red && rb < n_red).then(|| Triplet::new(ra.min(rb), ra.max(rb), v))
+            })
+            .collect();
+        let factor = if n_red == 0 {
+            None
+        } else {
+            let a = SparseColMat::<usize, f64>::try_new_from_triplets(n_red, n_red, &triplets)
+                .map_err(|e| Error::internal(format!("assembling the rigid system: {e:?}")))?;
+            let symbolic = factorize_symbolic_cholesky(
+                a.symbolic(),
+                Side::Upper,
+                SymmetricOrdering::Amd,
+                Default::default(),
+            )
+            .map_err(|e| {
+                Error::internal(format!("symbolic Cholesky of the rigid system: {e:?}"))
+            })?;
+            let mut values = vec![0.0f64; symbolic.len_val()];
+            let mut mem = MemBuffer::try_new(
+                symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            )
+            .map_err(|e| Error::internal(format!("allocating the Cholesky scratch: {e:?}")))?;
+            symbolic
+                .factorize_numeric_llt(
+                    &mut values,
+                    a.as_ref(),
+                    Side::Upper,
+                    LltRegularization::default(),
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                    Default::default(),
+                )
+                .map_err(|e| {
+                    Error::internal(format!("the rigid system is not positive definite: {e:?}"))
+                })?;
+            Some((symbolic, values))
+        };
+        Ok(FactoredSystem {
+            n,
+            n_red,
+            reduced,
+            comp,
+            comp_anchored,
+            pins,
+            factor,
+        })
+    }
+}
+
+/// A factored least-squares system over the vertices: per frame, fill the right-hand side with
+/// [`FactoredSystem::rhs_index`] rows, then [`FactoredSystem::solve`].
+#[derive(Debug)]
+pub(crate) struct FactoredSystem {
+    n: usize,
+    n_red: usize,
+    /// Row of each vertex in the reduced system; pinned vertices map to the dummy row `n_red`.
+    reduced: Vec<u32>,
+    /// Connected component of each vertex.
+    comp: Vec<u32>,
+    /// Whether a component is fixed by extra rows (no centroid translation).
+    comp_anchored: Vec<bool>,
+    /// The pinned vertex of every free component.
+    pins: Vec<u32>,
+    factor: Option<(SymbolicCholesky<usize>, Vec<f64>)>,
+}
+
+/// Per-thread scratch of a [`FactoredSystem`] solve.
+pub(crate) struct SolveScratch {
+    /// Right-hand side, column-major `(n_red + 1) × 2` (x then y; the last row is the dummy).
+    pub(crate) rhs: Vec<f64>,
+    sums: Vec<(Point, f64)>,
+    mem: MemBuffer,
+}
+
+impl std::fmt::Debug for SolveScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolveScratch")
+            .field("rows", &(self.rhs.len() / 2))
+            .finish_non_exhaustive()
+    }
+}
+
+impl FactoredSystem {
+    /// Row of vertex `v` in the right-hand side buffer (pinned vertices write to a dummy row).
+    #[inline]
+    pub(crate) fn rhs_index(&self, v: u32) -> usize {
+        self.reduced[v as usize] as usize
+    }
+
+    /// Number of vertices.
+    pub(crate) fn vertex_count(&self) -> usize {
+        self.n
+    }
+
+    /// Number of connected components.
+    pub(crate) fn component_count(&self) -> usize {
+        self.comp_anchored.len()
+    }
+
+    /// Component of each vertex.
+    pub(crate) fn components(&self) -> &[u32] {
+        &self.comp
+    }
+
+    /// The translation pins, one per component not anchored by extra rows.
+    #[allow(dead_code)]
+    pub(crate) fn pins(&self) -> &[u32] {
+        &self.pins
+    }
+
+    /// Scratch buffers sized for this system.
+    pub(crate) fn scratch(&self) -> SolveScratch {
+        let req = match &self.factor {
+            Some((s, _)) => s.solve_in_place_scratch::<f64>(2, Par::Seq),
+            None => faer::dyn_stack::StackReq::EMPTY,
+        };
+        SolveScratch {
+            rhs: vec![0.0; 2 * (self.n_red + 1)],
+            sums: vec![(Point::ZERO, 0.0); self.component_count()],
+            mem: MemBuffer::new(req),
+        }
+    }
+
+    /// Clears the right-hand side (for callers that fill it row by row, e.g. with extra rows).
+    #[cfg_attr(not(test), allow(dead_code))]
+    #[inline]
+    pub(crate) fn clear_rhs(&self, s: &mut SolveScratch) {
+        s.rhs.fill(0.0);
+    }
+
+    /// Adds `b` to the right-hand side row of vertex `v` (e.g. `w·c_k·J` of an extra row).
+    #[cfg_attr(not(test), allow(dead_code))]
+    #[inline]
+    pub(crate) fn add_rhs(&self, s: &mut SolveScratch, v: u32, b: Point) {
+        let r = self.rhs_index(v);
+        let stride = self.n_red + 1;
+        s.rhs[r] += b.x;
+        s.rhs[stride + r] += b.y;
+    }
+
+    /// Solves for the right-hand side in `s.rhs` and writes every vertex into `out`, translating
+    /// each free component so its vertex centroid is `centroids[component]` (module docs).
+    pub(crate) fn solve(&self, s: &mut SolveScratch, centroids: &[Point], out: &mut [Point]) {
+        debug_assert_eq!(out.len(), self.n);
+        let stride = self.n_red + 1;
+        if let Some((symbolic, values)) = &self.factor {
+            let llt = LltRef::<usize, f64>::new(symbolic, values);
+            let rhs = MatMut::from_column_major_slice_mut(&mut s.rhs[..], stride, 2);
+            let rhs = rhs.subrows_mut(0, self.n_red);
+            llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut s.mem));
+        }
+        s.sums.fill((Point::ZERO, 0.0));
+        for (v, o) in out.iter_mut().enumerate() {
+            let r = self.reduced[v] as usize;
+            *o = if r < self.n_red {
+                Point::new(s.rhs[r], s.rhs[stride + r])
+            } else {
+                Point::ZERO
+            };
+            let acc = &mut s.sums[self.comp[v] as usize];
+            acc.0 += *o;
+            acc.1 += 1.0;
+        }
+        for (c, acc) in s.sums.iter_mut().enumerate() {
+            acc.0 = if self.comp_anchored[c] {
+                Point::ZERO
+            } else {
+                centroids[c] - acc.0 / acc.1
+            };
+        }
+        for (v, o) in out.iter_mut().enumerate() {
+            *o += s.sums[self.comp[v] as usize].0;
+        }
+    }
+}
+
+/// Vertex centroid of every component.
+pub(crate) fn component_centroids(comp: &[u32], count: usize, points: &[Point]) -> Vec<Point> {
+    let mut sums = vec![(Point::ZERO, 0.0f64); count];
+    for (&c, &p) in comp.iter().zip(points) {
+        sums[c as usize].0 += p;
+        sums[c as usize].1 += 1.0;
+    }
+    sums.into_iter()
+        .map(|(s, k)| if k > 0.0 { s / k } else { Point::ZERO })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path 0–1–2 and a separate edge 3–4: two components, two pins, exact edge targets.
+    #[test]
+    fn laplacian_solve_reproduces_consistent_differences_per_component() {
+        let mut b = SystemBuilder::new(5);
+        for (i, j) in [(0, 1), (1, 2), (3, 4)] {
+            b.add_edge(i, j, 2.0);
+        }
+        let sys = b.factor().unwrap();
+        assert_eq!(sys.component_count(), 2);
+        assert_eq!(sys.pins(), &[0, 3]);
+        let want = [
+            Point::new(1.0, 2.0),
+            Point::new(3.0, -1.0),
+            Point::new(4.0, 0.5),
+            Point::new(-7.0, 1.0),
+            Point::new(-6.0, 3.0),
+        ];
+        let mut s = sys.scratch();
+        sys.clear_rhs(&mut s);
+        for (i, j) in [(0u32, 1u32), (1, 2), (3, 4)] {
+            let d = (want[j as usize] - want[i as usize]) * 2.0;
+            sys.add_rhs(&mut s, j, d);
+            sys.add_rhs(&mut s, i, -d);
+        }
+        let cents = component_centroids(sys.components(), 2, &want);
+        let mut out = vec![Point::ZERO; 5];
+        sys.solve(&mut s, &cents, &mut out);
+        for (a, b) in out.iter().zip(&want) {
+            assert!(a.distance(*b) < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    /// An extra row anchors its component: no pin, and the position comes from the row.
+    #[test]
+    fn extra_rows_anchor_a_component() {
+        let mut b = SystemBuilder::new(3);
+        b.add_edge(0, 1, 1.0);
+        b.add_edge(1, 2, 1.0);
+        b.add_extra_row(&[(2, 1.0)], 1.0);
+        let sys = b.factor().unwrap();
+        assert!(sys.pins().is_empty());
+        let mut s = sys.scratch();
+        sys.clear_rhs(&mut s);
+        // Edges want unit x steps, the extra row wants v2 = (10, 5).
+        for (i, j) in [(0u32, 1u32), (1, 2)] {
+            sys.add_rhs(&mut s, j, Point::X);
+            sys.add_rhs(&mut s, i, -Point::X);
+        }
+        sys.add_rhs(&mut s, 2, Point::new(10.0, 5.0));
+        let mut out = vec![Point::ZERO; 3];
+        sys.solve(&mut s, &[Point::new(99.0, 99.0)], &mut out);
+        assert!(out[2].distance(Point::new(10.0, 5.0)) < 1e-12);
+        assert!(out[0].distance(Point::new(8.0, 5.0)) < 1e-12);
+    }
+}

@@ -1,0 +1,197 @@
+//! Globally consistent rotation (§4.1.1).
+//!
+//! Every local transformation's angle is first measured independently in (−π, π] (the small
+//! rotation). For a shape that turns by 180° or more, neighbouring transformations can then
+//! disagree by almost 2π and parts of the shape would spin the other way. The fix of §4.1.1: a
+//! graph with a node per local transformation, an edge between neighbouring transformations with
+//! cost `|α₁ − α₂|`, its minimum spanning tree, and a depth-first traversal from the
+//! transformation of smallest `|α|` that shifts each child's angle by the smallest `±2kπ` making
+//! `|α_parent − α_child| ≤ π`.
+//!
+//! [`consistent_angles`] is that algorithm on any node/link graph; the callers choose the graph.
+//! The disc method uses a reduced graph, one node per undirected disc edge (see
+//! [`crate::rigid::disc`]); [`full_disc_graph`] builds the paper's literal graph so tests can
+//! check that both agree.
+
+use std::f64::consts::{PI, TAU};
+
+/// Makes `angles` consistent over the graph whose links are `links` (pairs of node indices):
+/// Kruskal's minimum spanning forest under cost `|α_a − α_b|` (ties broken by the link's node
+/// indices, so the result is deterministic), then an iterative depth-first traversal from each
+/// tree's node of smallest `|α|` (ties: lowest index) correcting each child by the multiple of 2π
+/// that brings it within π of its parent.
+pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64> {
+    let n = angles.len();
+    // Kruskal: sort links by cost, then by node indices.
+    let mut order: Vec<(f64, u32, u32)> = links
+        .iter()
+        .filter(|(a, b)| a != b)
+        .map(|&(a, b)| {
+            let (a, b) = (a.min(b), a.max(b));
+            ((angles[a as usize] - angles[b as usize]).abs(), a, b)
+        })
+        .collect();
+    order.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            let gp = parent[parent[v as usize] as usize];
+            parent[v as usize] = gp;
+            v = gp;
+        }
+        v
+    }
+    let mut tree: Vec<(u32, u32)> = Vec::with_capacity(n.saturating_sub(1));
+    for &(_, a, b) in &order {
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        if ra != rb {
+            parent[ra.max(rb) as usize] = ra.min(rb);
+            tree.push((a, b));
+            if tree.len() + 1 == n {
+                break;
+            }
+        }
+    }
+    drop(order);
+    // Tree adjacency in compressed rows.
+    let mut start = vec![0u32; n + 1];
+    for &(a, b) in &tree {
+        start[a as usize + 1] += 1;
+        start[b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut adj = vec![0u32; 2 * tree.len()];
+    for &(a, b) in &tree {
+        adj[fill[a as usize] as usize] = b;
+        fill[a as usize] += 1;
+        adj[fill[b as usize] as usize] = a;
+        fill[b as usize] += 1;
+    }
+    // Root of each tree: smallest |α|, lowest index on ties.
+    let mut root_of = vec![u32::MAX; n];
+    for v in 0..n as u32 {
+        let r = find(&mut parent, v) as usize;
+        let best = root_of[r];
+        if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
+            root_of[r] = v;
+        }
+    }
+    let mut out = angles.to_vec();
+    let mut visited = vec![false; n];
+    let mut stack: Vec<u32> = Vec::new();
+    for &root in root_of.iter().filter(|&&r| r != u32::MAX) {
+        visited[root as usize] = true;
+        stack.push(root);
+        while let Some(v) = stack.pop() {
+            let av = out[v as usize];
+            for &c in &adj[start[v as usize] as usize..start[v as usize + 1] as usize] {
+                if !visited[c as usize] {
+                    visited[c as usize] = true;
+                    out[c as usize] = nearest_branch(out[c as usize], av);
+                    stack.push(c);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `alpha + 2kπ` for the integer `k` that brings it closest to `reference` (so the difference is
+/// at most π; unchanged when it already is below π).
+pub(crate) fn nearest_branch(alpha: f64, reference: f64) -> f64 {
+    let d = reference - alpha;
+    if d.abs() < PI {
+        alpha
+    } else {
+        alpha + TAU * (d / TAU).round()
+    }
+}
+
+/// The paper's literal graph (§4.1.1) for discs `discs`: one node per directed local
+/// transformation `(i, j)` with `j ∈ P_i`, numbered in the order of `discs`, and a link between
+/// `(i₁, j₁)` and `(i₂, j₂)` when `p_j₁ ∈ P_j₂` or `p_j₂ ∈ P_j₁`. Large (about 36 links per
+/// transformation on a triangle mesh); used by tests to validate the reduced graph.
+#[cfg(test)]
+pub(crate) fn full_disc_graph(discs: &[Vec<u32>]) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let n = discs.len();
+    let mut nodes = Vec::new();
+    let mut by_end: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for (i, d) in discs.iter().enumerate() {
+        for &j in d {
+            by_end[j as usize].push(nodes.len() as u32);
+            nodes.push((i as u32, j));
+        }
+    }
+    // Symmetric closure of "is in the disc of".
+    let mut near: Vec<Vec<u32>> = discs.to_vec();
+    for (i, d) in discs.iter().enumerate() {
+        for &j in d {
+            near[j as usize].push(i as u32);
+        }
+    }
+    let mut links = Vec::new();
+    for (k1, &(_, j1)) in nodes.iter().enumerate() {
+        let mut ends = near[j1 as usize].clone();
+        ends.sort_unstable();
+        ends.dedup();
+        for j2 in ends {
+            for &k2 in &by_end[j2 as usize] {
+                if (k1 as u32) < k2 {
+                    links.push((k1 as u32, k2));
+                }
+            }
+        }
+    }
+    (nodes, links)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_branch_takes_the_smallest_correction() {
+        assert_eq!(nearest_branch(0.3, 0.1), 0.3);
+        assert!((nearest_branch(-3.0, 3.0) - (TAU - 3.0)).abs() < 1e-15);
+        assert!((nearest_branch(3.0, -3.0) - (3.0 - TAU)).abs() < 1e-15);
+        assert!((nearest_branch(0.1, 4.0 * PI) - (0.1 + 4.0 * PI)).abs() < 1e-12);
+    }
+
+    /// A chain of angles turning past π: the raw values wrap to −π, the corrected ones keep
+    /// increasing from the root (smallest |α|).
+    #[test]
+    fn a_chain_crossing_pi_is_unwrapped() {
+        let true_angles: Vec<f64> = (0..40).map(|k| 0.1 * k as f64).collect();
+        let raw: Vec<f64> = true_angles
+            .iter()
+            .map(|a| {
+                let w = a.rem_euclid(TAU);
+                if w > PI {
+                    w - TAU
+                } else {
+                    w
+                }
+            })
+            .collect();
+        let links: Vec<(u32, u32)> = (0..39).map(|k| (k, k + 1)).collect();
+        let fixed = consistent_angles(&raw, &links);
+        for (f, t) in fixed.iter().zip(&true_angles) {
+            assert!((f - t).abs() < 1e-12, "{f} vs {t}");
+        }
+    }
+
+    #[test]
+    fn disconnected_parts_get_their_own_root() {
+        let raw = [3.0, -3.0, 0.2, -3.1];
+        let fixed = consistent_angles(&raw, &[(0, 1), (2, 3)]);
+        // First part: root is the smaller |α| (3.0 vs −3.0 tie → index 0 stays).
+        assert_eq!(fixed[0], 3.0);
+        assert!((fixed[1] - (TAU - 3.0)).abs() < 1e-15);
+        // Second part: root 0.2; −3.1 is 3.3 away, so it moves to 2π − 3.1 (2.98 away).
+        assert_eq!(fixed[2], 0.2);
+        assert!((fixed[3] - (TAU - 3.1)).abs() < 1e-15);
+    }
+}

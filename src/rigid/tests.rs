@@ -1,0 +1,442 @@
+//! Tests of the interpolation methods on synthetic meshes built here.
+
+use super::rotation::{consistent_angles, full_disc_graph};
+use super::*;
+use crate::geometry::bounding_box;
+use crate::quality;
+use proptest::prelude::*;
+use std::f64::consts::PI;
+
+/// A `nx × ny` vertex grid with spacing `h`, split into counter-clockwise triangles.
+fn grid(nx: usize, ny: usize, h: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+    let pts = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| Point::new(i as f64 * h, j as f64 * h)))
+        .collect();
+    let mut tris = Vec::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let v = |i: usize, j: usize| (j * nx + i) as u32;
+            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
+        }
+    }
+    (pts, tris)
+}
+
+fn diag(points: &[Point]) -> f64 {
+    let (lo, hi) = bounding_box(points.iter().copied()).unwrap();
+    lo.distance(hi)
+}
+
+fn rot(p: Point, a: f64) -> Point {
+    Point::from_angle(a).rotate(p)
+}
+
+/// Least-squares similarity `z ↦ a·z + b` (complex numbers) from `src` to `dst`: returns
+/// (angle of a, |a|, max residual).
+fn fit_similarity(src: &[Point], dst: &[Point]) -> (f64, f64, f64) {
+    let cs = crate::geometry::centroid(src);
+    let cd = crate::geometry::centroid(dst);
+    let (mut re, mut im, mut nn) = (0.0, 0.0, 0.0);
+    for (p, q) in src.iter().zip(dst) {
+        let (z, w) = (*p - cs, *q - cd);
+        re += z.dot(w);
+        im += z.perp_dot(w);
+        nn += z.length_squared();
+    }
+    let a = Point::new(re, im) / nn;
+    let res = src
+        .iter()
+        .zip(dst)
+        .map(|(p, q)| (a.rotate(*p - cs) + cd).distance(*q))
+        .fold(0.0, f64::max);
+    (a.y.atan2(a.x), a.length(), res)
+}
+
+/// Bend a strip `[0, L] × [0, W]` along an arc turning by `bend` radians in total, then rotate
+/// by `turn` about the origin; arc length and width are preserved.
+fn bend(points: &[Point], length: f64, bend: f64, turn: f64) -> Vec<Point> {
+    points
+        .iter()
+        .map(|p| {
+            let q = if bend.abs() < 1e-12 {
+                *p
+            } else {
+                let r = length / bend;
+                let phi = p.x / r;
+                Point::new((r - p.y) * phi.sin(), r - (r - p.y) * phi.cos())
+            };
+            rot(q, turn)
+        })
+        .collect()
+}
+
+#[test]
+fn interpolators_are_shareable_between_threads() {
+    fn check<T: Send + Sync>() {}
+    check::<Interpolator>();
+    fn send<T: Send>() {}
+    send::<Workspace>();
+}
+
+const METHODS: [Method; 3] = [Method::Disc, Method::Triangle, Method::Linear];
+
+#[test]
+fn end_frames_reproduce_source_and_target() {
+    let (src, tris) = grid(12, 9, 1.0);
+    let tgt: Vec<Point> = bend(&src, 11.0, 1.3, 2.4)
+        .into_iter()
+        .enumerate()
+        .map(|(k, p)| p * 1.4 + Point::new(0.05 * (k as f64 * 0.7).sin(), 30.0))
+        .collect();
+    let tol = 1e-9 * diag(&src).max(diag(&tgt));
+    for m in METHODS {
+        let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+        assert_eq!(it.method(), m);
+        for (t, want) in [(0.0, &src), (1.0, &tgt)] {
+            let got = it.at_vec(t);
+            let err = got
+                .iter()
+                .zip(want.iter())
+                .map(|(a, b)| a.distance(*b))
+                .fold(0.0, f64::max);
+            assert!(err < tol, "{m:?} t={t}: error {err}");
+        }
+    }
+}
+
+#[test]
+fn similarity_targets_give_similarity_frames_the_short_way_round() {
+    let (src, tris) = grid(14, 14, 1.0); // 196 vertices
+    let d = diag(&src);
+    for deg in [30.0f64, 90.0, 179.0, 181.0, 270.0, 350.0, -200.0] {
+        let phi = deg.to_radians();
+        let short = (phi + PI).rem_euclid(2.0 * PI) - PI;
+        let tgt: Vec<Point> = src
+            .iter()
+            .map(|p| rot(*p, phi) * 1.7 + Point::new(-40.0, 7.0))
+            .collect();
+        let it = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+        for k in 0..=10 {
+            let t = k as f64 / 10.0;
+            let frame = it.at_vec(t);
+            let (ang, scale, res) = fit_similarity(&src, &frame);
+            assert!(res < 1e-9 * d * 1.7, "{deg}° t={t}: residual {res}");
+            let want = t * short;
+            let dang = (ang - want + PI).rem_euclid(2.0 * PI) - PI;
+            assert!(dang.abs() < 1e-9, "{deg}° t={t}: angle {ang} want {want}");
+            assert!(
+                (scale - (1.0 + 0.7 * t)).abs() < 1e-9,
+                "{deg}° t={t}: scale {scale}"
+            );
+            assert_eq!(quality::inverted_triangles(&tris, &frame), 0);
+        }
+        // The consistent rotation reported per disc is the short angle itself.
+        assert!(
+            (it.rotation_at(17) - short).abs() < 1e-9,
+            "{deg}°: {}",
+            it.rotation_at(17)
+        );
+    }
+}
+
+/// A strip that turns by about 180° while bending: its local rotations straddle ±π.
+fn half_turn_strip() -> (Vec<Point>, Vec<[u32; 3]>, Vec<Point>) {
+    let (src, tris) = grid(31, 5, 1.0);
+    let tgt = bend(&src, 30.0, 1.4, PI - 0.7);
+    (src, tris, tgt)
+}
+
+#[test]
+fn half_turn_keeps_area_where_linear_collapses() {
+    let (src, tris, tgt) = half_turn_strip();
+    let (a0, a1) = (quality::area(&tris, &src), quality::area(&tris, &tgt));
+    let disc = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+    let areas = quality::area_through_time(&disc, &tris, 21);
+    for (k, a) in areas.iter().enumerate() {
+        let t = k as f64 / 20.0;
+        let want = (1.0 - t) * a0 + t * a1;
+        assert!((a - want).abs() <= 0.1 * want, "t={t}: area {a} vs {want}");
+        assert_eq!(
+            quality::inverted_triangles(&tris, &disc.at_vec(t)),
+            0,
+            "t={t}"
+        );
+    }
+    let lin = Interpolator::new(Method::Linear, &src, &tgt, &tris).unwrap();
+    let mid = quality::area(&tris, &lin.at_vec(0.5));
+    assert!(mid.abs() < 0.1 * a0, "linear area at 0.5: {mid} of {a0}");
+    // Every local rotation goes the same way: all consistent angles within π of each other.
+    let rots: Vec<f64> = (0..src.len()).map(|i| disc.rotation_at(i)).collect();
+    let (lo, hi) = rots
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(l, h), &r| (l.min(r), h.max(r)));
+    assert!(hi - lo < PI, "rotations spread {lo}..{hi}");
+}
+
+#[test]
+fn reduced_rotation_graph_matches_the_full_graph() {
+    let cases: Vec<(Vec<Point>, Vec<[u32; 3]>, Vec<Point>)> = vec![
+        {
+            let (s, t) = grid(7, 4, 1.0);
+            let g = bend(&s, 6.0, 1.6, PI - 0.8); // angles straddle ±π
+            (s, t, g)
+        },
+        {
+            let (s, t) = grid(6, 6, 1.0);
+            let g = s
+                .iter()
+                .map(|p| rot(*p, 200f64.to_radians()) * 0.8)
+                .collect();
+            (s, t, g)
+        },
+        {
+            let (s, t) = grid(8, 3, 1.0);
+            let g = bend(&s, 7.0, 2.5, 3.3); // strong bend, past 180°
+            (s, t, g)
+        },
+    ];
+    let mut crossed = false;
+    for (src, tris, tgt) in cases {
+        let rings = crate::mesh::one_rings(&tris, src.len());
+        let local = disc::LocalTransforms::new(&src, &tgt, &rings).unwrap();
+        let reduced = consistent_angles(&local.alpha, &local.rotation_links(src.len()));
+        let (nodes, links) = full_disc_graph(&rings);
+        let raw: Vec<f64> = nodes
+            .iter()
+            .map(|&(i, j)| {
+                let k = local.edges.binary_search(&(i.min(j), i.max(j))).unwrap();
+                local.alpha[k]
+            })
+            .collect();
+        let full = consistent_angles(&raw, &links);
+        for (&(i, j), a) in nodes.iter().zip(&full) {
+            let k = local.edges.binary_search(&(i.min(j), i.max(j))).unwrap();
+            assert!(
+                (reduced[k] - a).abs() < 1e-12,
+                "edge ({i},{j}): {} vs {a}",
+                reduced[k]
+            );
+            crossed |= (reduced[k] - local.alpha[k]).abs() > 1.0;
+        }
+    }
+    assert!(crossed, "some case should need 2π corrections");
+}
+
+/// Largest distortion of a well-shaped source triangle in an intermediate frame, relative to the
+/// larger of its end distortions (1 at t = 0): above 1 means a spike. Thin triangles (twice the
+/// area over the longest edge squared below 0.1) are left out: their distortion measures nothing
+/// visible, and the disc method, which never looks at triangles, does not control it.
+fn spike_on_well_shaped_triangles(
+    m: Method,
+    src: &[Point],
+    tgt: &[Point],
+    tris: &[[u32; 3]],
+) -> f64 {
+    let it = Interpolator::new(m, src, tgt, tris).unwrap();
+    let end = quality::distortion(tris, src, tgt);
+    let well_shaped: Vec<bool> = tris
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| src[i as usize]);
+            let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
+            2.0 * crate::geometry::triangle_area(a, b, c) / (longest * longest) >= 0.1
+        })
+        .collect();
+    let mut worst: f64 = 0.0;
+    for k in 1..20 {
+        let frame = it.at_vec(k as f64 / 20.0);
+        if m == Method::Disc {
+            assert_eq!(
+                quality::inverted_triangles(tris, &frame),
+                0,
+                "t={}",
+                k as f64 / 20.0
+            );
+        }
+        for ((d, e), ok) in quality::distortion(tris, src, &frame)
+            .iter()
+            .zip(&end)
+            .zip(&well_shaped)
+        {
+            if *ok {
+                worst = worst.max(d / e.max(1.0));
+            }
+        }
+    }
+    worst
+}
+
+/// A grid with a column of needles (width 0.001, height 1) as a compatible triangulation without
+/// optimization produces (Fig. 13); the target opens them to width 0.02 and slides their apexes
+/// along the column, on top of a smooth bend. The needles' affine maps are huge shears whose polar
+/// rotations disagree with their neighbours': the triangle baseline, in which every triangle pulls
+/// equally, drags the well-shaped neighbours past their end distortion; the disc method does not.
+#[test]
+fn thin_triangles_make_the_triangle_baseline_spike_not_the_disc_method() {
+    let (mut src, tris) = grid(13, 7, 1.0);
+    let mut pre = src.clone();
+    for j in 0..7 {
+        let k = j * 13 + 6;
+        src[k].x = 6.999;
+        pre[k].x = 6.98;
+        pre[k].y += 0.3 * (j as f64 - 3.0);
+    }
+    let tgt = bend(&pre, 12.0, 1.2, 0.5);
+    assert_eq!(quality::inverted_triangles(&tris, &tgt), 0);
+    let disc = spike_on_well_shaped_triangles(Method::Disc, &src, &tgt, &tris);
+    let tri = spike_on_well_shaped_triangles(Method::Triangle, &src, &tgt, &tris);
+    assert!(disc <= 1.0, "disc method spikes: {disc}");
+    assert!(tri > 1.05, "triangle baseline should spike: {tri}");
+}
+
+#[test]
+fn disconnected_parts_each_move_rigidly() {
+    let (a, ta) = grid(5, 5, 1.0);
+    let (b, tb) = grid(4, 6, 1.0);
+    let n = a.len() as u32;
+    let src: Vec<Point> = a
+        .iter()
+        .copied()
+        .chain(b.iter().map(|p| *p + Point::new(10.0, 0.0)))
+        .collect();
+    let tris: Vec<[u32; 3]> = ta
+        .into_iter()
+        .chain(tb.into_iter().map(|t| t.map(|v| v + n)))
+        .collect();
+    let tgt: Vec<Point> = src
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if (k as u32) < n {
+                rot(*p, 2.0)
+            } else {
+                rot(*p, -1.0) + Point::new(0.0, 20.0)
+            }
+        })
+        .collect();
+    for m in [Method::Disc, Method::Triangle] {
+        let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+        let mid = it.at_vec(0.5);
+        let (ang_a, _, res_a) = fit_similarity(&src[..n as usize], &mid[..n as usize]);
+        let (ang_b, _, res_b) = fit_similarity(&src[n as usize..], &mid[n as usize..]);
+        assert!(res_a < 1e-9 && res_b < 1e-9, "{m:?}: {res_a} {res_b}");
+        assert!(
+            (ang_a - 1.0).abs() < 1e-9 && (ang_b + 0.5).abs() < 1e-9,
+            "{m:?}: {ang_a} {ang_b}"
+        );
+        let c = crate::geometry::centroid(&mid[n as usize..]);
+        let want = (crate::geometry::centroid(&src[n as usize..])
+            + crate::geometry::centroid(&tgt[n as usize..]))
+            * 0.5;
+        assert!(c.distance(want) < 1e-9);
+    }
+}
+
+#[test]
+fn barycenter_style_discs_of_all_other_points() {
+    let src: Vec<Point> = (0..9)
+        .map(|k| Point::new((k as f64).cos() * 3.0 + k as f64, (k * k) as f64 * 0.3))
+        .collect();
+    let discs: Vec<Vec<u32>> = (0..9u32)
+        .map(|i| (0..9).filter(|&j| j != i).collect())
+        .collect();
+    let tgt: Vec<Point> = src.iter().map(|p| rot(*p, 3.5) * 0.5).collect();
+    let it = Interpolator::from_discs(&src, &tgt, &discs).unwrap();
+    assert_eq!(it.vertex_count(), 9);
+    let frames = it.frames(&[0.0, 0.25, 1.0]);
+    assert_eq!(frames[1], it.at_vec(0.25));
+    let (ang, _, res) = fit_similarity(&src, &frames[1]);
+    assert!(res < 1e-9);
+    assert!((ang - 0.25 * (3.5 - 2.0 * PI)).abs() < 1e-9);
+    for (a, b) in frames[2].iter().zip(&tgt) {
+        assert!(a.distance(*b) < 1e-9);
+    }
+}
+
+#[test]
+fn bad_input_is_an_input_error_naming_the_point() {
+    let (src, tris) = grid(3, 3, 1.0);
+    let mut tgt = src.clone();
+    tgt[4] = tgt[5];
+    let e = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap_err();
+    assert!(
+        e.is_input() && e.to_string().contains("points 4 and 5"),
+        "{e}"
+    );
+    let mut nan = src.clone();
+    nan[2].y = f64::NAN;
+    for m in METHODS {
+        let e = Interpolator::new(m, &nan, &src, &tris).unwrap_err();
+        assert!(e.is_input() && e.to_string().contains("point 2"), "{e}");
+        let e = Interpolator::new(m, &src, &src[1..], &tris).unwrap_err();
+        assert!(e.is_input(), "{e}");
+        let e = Interpolator::new(m, &src, &src, &[[0, 1, 99]]).unwrap_err();
+        assert!(e.is_input() && e.to_string().contains("triangle 0"), "{e}");
+    }
+    let e = Interpolator::from_discs(&src, &src, &[vec![0]]).unwrap_err();
+    assert!(e.is_input(), "{e}");
+    let mut flat = src.clone();
+    flat[1] = Point::new(0.5, 0.0);
+    flat[4] = Point::new(1.0, 0.0);
+    assert!(Interpolator::new(Method::Triangle, &flat, &src, &tris)
+        .unwrap_err()
+        .is_input());
+}
+
+#[test]
+fn empty_and_isolated_points_interpolate_linearly() {
+    let it = Interpolator::new(Method::Disc, &[], &[], &[]).unwrap();
+    assert!(it.at_vec(0.5).is_empty());
+    let src = [
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(0.0, 1.0),
+        Point::new(5.0, 5.0),
+    ];
+    let tgt = [
+        Point::new(0.0, 0.0),
+        Point::new(0.0, 1.0),
+        Point::new(-1.0, 0.0),
+        Point::new(7.0, 5.0),
+    ];
+    let it = Interpolator::new(Method::Disc, &src, &tgt, &[[0, 1, 2]]).unwrap();
+    assert!(it.at_vec(0.5)[3].distance(Point::new(6.0, 5.0)) < 1e-12);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn random_similarities_give_exact_similarity_frames(
+        angle in -10.0f64..10.0, scale in 0.1f64..10.0, tx in -1e3f64..1e3, ty in -1e3f64..1e3,
+        t in 0.0f64..1.0,
+    ) {
+        let (src, tris) = grid(6, 5, 2.0);
+        let tgt: Vec<Point> = src.iter().map(|p| rot(*p, angle) * scale + Point::new(tx, ty)).collect();
+        let it = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+        let (ang, s, res) = fit_similarity(&src, &it.at_vec(t));
+        let short = (angle + PI).rem_euclid(2.0 * PI) - PI;
+        prop_assert!(res < 1e-9 * diag(&src) * scale.max(1.0));
+        let dang = (ang - t * short + PI).rem_euclid(2.0 * PI) - PI;
+        prop_assert!(dang.abs() < 1e-9);
+        prop_assert!((s - (1.0 + t * (scale - 1.0))).abs() < 1e-9 * scale.max(1.0));
+    }
+
+    #[test]
+    fn random_perturbations_keep_end_frames_exact(
+        noise in proptest::collection::vec((-0.3f64..0.3, -0.3f64..0.3), 30), angle in -4.0f64..4.0,
+    ) {
+        let (src, tris) = grid(6, 5, 1.0);
+        let tgt: Vec<Point> = src.iter().zip(&noise).map(|(p, (dx, dy))| rot(*p + Point::new(*dx, *dy), angle)).collect();
+        let tol = 1e-9 * diag(&src).max(diag(&tgt));
+        for m in METHODS {
+            let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+            for (t, want) in [(0.0, &src), (1.0, &tgt)] {
+                let err = it.at_vec(t).iter().zip(want.iter()).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+                prop_assert!(err < tol, "{:?} t={}: {}", m, t, err);
+            }
+        }
+    }
+}
