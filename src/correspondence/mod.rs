@@ -83,6 +83,13 @@ pub struct CorrespondenceOptions {
     /// Farthest an anchor may be from the curve it pins, as a fraction of the drawing's
     /// diagonal. Default: `0.02`.
     pub anchor_reach: f64,
+    /// The turn (radians) that breaks ties between equally good starts of a symmetric closed
+    /// curve (an ellipse matches its twin equally well at 0° and 180°): the start whose turn is
+    /// nearest to it wins. [`correspond_all`] sets it for every feature to the boundary pair's
+    /// best-fit rotation, so that a spot on a shape turning half round turns with it instead of
+    /// staying put while everything around it turns (which folds any mapping). Default: `None`,
+    /// the least turning.
+    pub preferred_rotation: Option<f64>,
 }
 
 impl Default for CorrespondenceOptions {
@@ -98,6 +105,7 @@ impl Default for CorrespondenceOptions {
             max_turning_ratio: 3.0,
             merge_fraction: 0.2,
             anchor_reach: 0.02,
+            preferred_rotation: None,
         }
     }
 }
@@ -235,13 +243,39 @@ pub fn correspond_all(
             );
         }
     }
-    curves
-        .iter()
-        .zip(&pins)
-        .map(|((s, t), p)| {
-            correspond(s, t, p, tol, opts).map_err(|e| name_files(e, src_file, tgt_file))
-        })
-        .collect()
+    // The boundary first: the turn of its part nearest each feature breaks the ties of
+    // symmetric features (see `CorrespondenceOptions::preferred_rotation`).
+    let mut out: Vec<CurvePair> = Vec::with_capacity(curves.len());
+    for (k, ((s, t), p)) in curves.iter().zip(&pins).enumerate() {
+        let mut o = opts.clone();
+        if k > 0 && o.preferred_rotation.is_none() {
+            o.preferred_rotation = Some(local_turn(&out[0], &s.points));
+        }
+        let pair = correspond(s, t, p, tol, &o).map_err(|e| name_files(e, src_file, tgt_file))?;
+        out.push(pair);
+    }
+    Ok(out)
+}
+
+/// How many of the boundary's corresponded vertices nearest a feature measure its surroundings'
+/// turn.
+const LOCAL_TURN_VERTICES: usize = 24;
+
+/// The turn of the surroundings of a feature: the best-fit rotation of the boundary vertices
+/// nearest to the feature's centroid (source side), carried to their target twins.
+fn local_turn(boundary: &CurvePair, feature: &[Point]) -> f64 {
+    let c = crate::geometry::centroid(feature);
+    let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
+    idx.sort_by(|&a, &b| {
+        boundary.source[a]
+            .distance(c)
+            .total_cmp(&boundary.source[b].distance(c))
+            .then(a.cmp(&b))
+    });
+    idx.truncate(LOCAL_TURN_VERTICES.max(boundary.source.len() / 10));
+    let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
+    let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
+    orientation::best_fit_rotation(&a, &b)
 }
 
 fn missing(id: &str, here: &str, there: &str) -> Error {
@@ -483,14 +517,17 @@ fn cyclic_pairs(
                 .iter()
                 .map(|&(_, y)| tp.points()[ts[y].index])
                 .collect();
-            (orientation::unrotated_residual(&a, &b), pairs)
+            (
+                orientation::turn_residual(&a, &b, opts.preferred_rotation),
+                pairs,
+            )
         })
         .fold(None::<(f64, &Vec<(usize, usize)>)>, |best, c| match best {
             Some(b) if b.0 <= c.0 => Some(b),
             _ => Some(c),
         });
     let Some((_, pairs)) = chosen else {
-        let j = orientation::best_closed_start(sp, tp);
+        let j = orientation::best_closed_start(sp, tp, opts.preferred_rotation);
         *tp = tp.rotated(j);
         return vec![(0, 0)];
     };

@@ -78,11 +78,52 @@ pub(crate) fn open_target_reversed(src: &Polyline, tgt: &Polyline) -> bool {
     reversed < drawn - 1e-9
 }
 
+/// How much worse (in relative residual) a start of a closed feature may fit than the best one
+/// and still be chosen for turning with the boundary ([`best_closed_start`]).
+pub(crate) const TURN_SLACK: f64 = 0.03;
+
+/// The best-fit rotation angle (radians, in (−π, π]) carrying the centred point list `a` onto `b`.
+pub(crate) fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
+    let (ca, cb) = (centroid(a), centroid(b));
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for (&p, &q) in a.iter().zip(b) {
+        let (p, q) = (p - ca, q - cb);
+        dot += p.dot(q);
+        cross += p.perp_dot(q);
+    }
+    cross.atan2(dot)
+}
+
+/// [`unrotated_residual`] after turning `a` by `turn` (none when `None`): how far matching `a` to
+/// `b` is from needing exactly that turn. The tie-breaker between symmetric correspondences.
+pub(crate) fn turn_residual(a: &[Point], b: &[Point], turn: Option<f64>) -> f64 {
+    match turn {
+        None => unrotated_residual(a, b),
+        Some(th) => {
+            let (s, c) = th.sin_cos();
+            let turned: Vec<Point> = a
+                .iter()
+                .map(|p| Point::new(c * p.x - s * p.y, s * p.x + c * p.y))
+                .collect();
+            unrotated_residual(&turned, b)
+        }
+    }
+}
+
 /// The target vertex at which a closed target curve should start so that it matches the source
-/// started at its vertex 0 best: the smallest [`similarity_residual`] between equal-count
-/// resamplings; among starts within 0.1% of the best (a symmetric pair such as circle ↔ ellipse),
-/// the one with the smallest [`unrotated_residual`], then the lowest index.
-pub(crate) fn best_closed_start(src: &Polyline, tgt: &Polyline) -> usize {
+/// started at its vertex 0 best.
+///
+/// Without a preferred `turn` (the boundary): the smallest [`similarity_residual`] between
+/// equal-count resamplings; among starts within 0.1% of the best (a symmetric pair such as
+/// circle ↔ ellipse), the one needing the least turning ([`unrotated_residual`]), then the
+/// lowest index.
+///
+/// With a preferred `turn` (features, given the boundary's turn): among the starts whose residual
+/// is within [`TURN_SLACK`] of the best, the one whose best-fit rotation is nearest `turn`. A
+/// smooth closed feature (a spot, an eye) fits its twin almost equally well at many starts;
+/// turning it with its surroundings matters more for the morph than the last bit of shape fit,
+/// because a feature spinning against its surroundings forces every mapping to fold.
+pub(crate) fn best_closed_start(src: &Polyline, tgt: &Polyline, turn: Option<f64>) -> usize {
     let a = src.resample(SHAPE_SAMPLES, 0.0);
     let scored: Vec<(usize, f64, Vec<Point>)> = (0..tgt.len())
         .map(|j| {
@@ -91,11 +132,24 @@ pub(crate) fn best_closed_start(src: &Polyline, tgt: &Polyline) -> usize {
         })
         .collect();
     let best = scored.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+    if let Some(turn) = turn {
+        let mut choice = (0usize, f64::INFINITY);
+        for (j, r, b) in &scored {
+            if *r <= best + TURN_SLACK {
+                let d = best_fit_rotation(&a, b) - turn;
+                let d = d.sin().atan2(d.cos()).abs();
+                if d < choice.1 - 1e-12 {
+                    choice = (*j, d);
+                }
+            }
+        }
+        return choice.0;
+    }
     let limit = best * 1.001 + 1e-12;
     let mut choice = (usize::MAX, f64::INFINITY);
     for (j, r, b) in &scored {
         if *r <= limit {
-            let u = unrotated_residual(&a, b);
+            let u = turn_residual(&a, b, turn);
             if u < choice.1 {
                 choice = (*j, u);
             }

@@ -12,7 +12,6 @@
 //! sequence exists, and the mapping reports the curves concerned instead of returning a folded
 //! mesh.
 
-use super::arap::ArapRelax;
 use super::harmonic::Harmonic;
 use super::shape_model::ShapeModel;
 use crate::correspondence::CurvePair;
@@ -37,9 +36,6 @@ pub struct MappingOptions {
     /// When the BSM path cannot be followed without folding, try again with straight-line
     /// intermediate curves before reporting the failure. Default: true.
     pub linear_fallback: bool,
-    /// As-rigid-as-possible relaxation iterations after each harmonic step ([`super::arap`]);
-    /// 0 gives plain composite harmonic mapping as in the paper. Default: 4.
-    pub relax_iterations: usize,
 }
 
 impl MappingOptions {
@@ -49,7 +45,6 @@ impl MappingOptions {
         max_steps: 2048,
         min_step: 1.0 / 4096.0,
         linear_fallback: true,
-        relax_iterations: 4,
     };
 
     /// Sets [`MappingOptions::initial_steps`].
@@ -67,12 +62,6 @@ impl MappingOptions {
     /// Sets [`MappingOptions::linear_fallback`].
     pub fn with_linear_fallback(mut self, on: bool) -> Self {
         self.linear_fallback = on;
-        self
-    }
-
-    /// Sets [`MappingOptions::relax_iterations`].
-    pub fn with_relax_iterations(mut self, n: usize) -> Self {
-        self.relax_iterations = n;
         self
     }
 
@@ -137,11 +126,7 @@ pub fn composite_map(
             .ok_or_else(|| Error::internal("composite map: bad curve vertex"))? = true;
     }
     let mut harmonic = Harmonic::new(&tri.triangles, n, &fixed)?;
-    let mut relax = if opts.relax_iterations > 0 {
-        Some(ArapRelax::new(&tri.points, &tri.triangles, &fixed)?)
-    } else {
-        None
-    };
+
     let mut stats = MappingStats {
         vertices: n,
         triangles: tri.triangles.len(),
@@ -149,33 +134,15 @@ pub fn composite_map(
     };
     let model = ShapeModel::new(pairs, from_target)?;
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
-    let current = match walk(
-        tri,
-        pairs,
-        &model,
-        h_bsm,
-        &mut harmonic,
-        &mut relax,
-        opts,
-        &mut stats,
-    ) {
+    let current = match walk(tri, pairs, &model, h_bsm, &mut harmonic, opts, &mut stats) {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
             log::debug!("composite map: BSM path failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, from_target)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
-            let c = walk(
-                tri,
-                pairs,
-                &linear,
-                1.0,
-                &mut harmonic,
-                &mut relax,
-                opts,
-                &mut stats,
-            )
-            .map_err(|_| e)?;
+            let c =
+                walk(tri, pairs, &linear, 1.0, &mut harmonic, opts, &mut stats).map_err(|_| e)?;
             stats.linear_path = true;
             c
         }
@@ -209,13 +176,11 @@ fn walk(
     model: &ShapeModel,
     h_max: f64,
     harmonic: &mut Harmonic,
-    relax: &mut Option<ArapRelax>,
     opts: &MappingOptions,
     stats: &mut MappingStats,
 ) -> Result<Vec<Point>> {
     let mut current = tri.points.clone();
     let mut next = current.clone();
-    let mut relaxed = current.clone();
     let valid = |v: &[Point]| {
         count_inverted(&tri.triangles, v) == 0 && !tri.triangles.iter().any(|t| is_bad(t, v))
     };
@@ -250,17 +215,7 @@ fn walk(
                 }
             }
             harmonic.solve(&current, &mut next)?;
-            // Relax toward the rest shape; keep the plain harmonic step if relaxing folds it.
-            let mut ok = false;
-            if let Some(r) = relax.as_mut() {
-                relaxed.copy_from_slice(&next);
-                r.relax(&mut relaxed, opts.relax_iterations)?;
-                if valid(&relaxed) {
-                    std::mem::swap(&mut next, &mut relaxed);
-                    ok = true;
-                }
-            }
-            ok || valid(&next)
+            valid(&next)
         };
         if ok {
             std::mem::swap(&mut current, &mut next);

@@ -39,7 +39,7 @@ struct CurveModel {
 
 /// The barycenter-based shape model of a set of curve pairs (§5, Fig.9): gives the intermediate
 /// curves at any `t ∈ [0, 1]`, exactly the source curves at 0 and the target curves at 1.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct ShapeModel {
     curves: Vec<CurveModel>,
     /// Barycenters at both ends.

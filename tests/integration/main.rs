@@ -3,5 +3,5 @@
 mod common;
 mod compatible;
 mod errors;
-//mod motion;
-//mod similarity;
+mod motion;
+mod similarity;
