@@ -60,6 +60,9 @@ fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
     s.atan2(c)
 }
 
+/// Turns beyond this (150°) are close enough to a half turn that their direction is ambiguous.
+const AMBIGUOUS_TURN: f64 = 5.0 * PI / 6.0;
+
 /// `a + 2kπ` closest to `reference`; `a` itself when it is within π (so ties keep the smaller
 /// turn).
 fn branch_near(a: f64, reference: f64) -> f64 {
@@ -192,9 +195,22 @@ impl ShapeModel {
         .map(|(lo, hi)| lo.distance(hi))
         .unwrap_or(0.0);
         let interpolator = barycenter_mesh(&b0, &b1, 1e-9 * scale);
-        if let Some(ip) = &interpolator {
-            for (i, c) in curves.iter_mut().enumerate() {
-                c.rotation = branch_near(c.rotation, ip.rotation_at(i));
+        // Each curve turns by its best-fit rotation, on a 2kπ branch chosen so that all curves
+        // turn the same way round. The boundary keeps its principal turn unless that is close to
+        // a half turn, where the direction is ambiguous and the barycenter mesh's consistent
+        // rotation (§4.1.1) decides; features take the branch nearest the boundary's turn. (The
+        // barycenter mesh alone is no guide when its nodes are nearly collinear on one side, as
+        // in U → S, where it would spin the boundary by 290° instead of turning it by −70°.)
+        if let Some(first) = curves.first_mut() {
+            if first.rotation.abs() > AMBIGUOUS_TURN {
+                if let Some(ip) = &interpolator {
+                    first.rotation = branch_near(first.rotation, ip.rotation_at(0));
+                }
+            }
+        }
+        if let Some(reference) = curves.first().map(|c| c.rotation) {
+            for c in curves.iter_mut().skip(1) {
+                c.rotation = branch_near(c.rotation, reference);
             }
         }
         Ok(ShapeModel {
