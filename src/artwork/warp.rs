@@ -1,0 +1,211 @@
+//! Warping bound artwork into the mesh of a frame (the end of §3: the source and target shapes
+//! are transferred to the intermediate triangulations, then blended).
+//!
+//! Points move by their barycentric coordinates; everything that is not a point follows a local
+//! affine map of the mesh — the map taking a rest triangle to its frame position:
+//! - stroke widths and dashes scale by the median, over the path's points, of `sqrt |det A|`
+//!   (the local area scale of the triangle under each point);
+//! - gradient geometry follows the full affine map of the triangle under the path's bounding-box
+//!   centre;
+//! - images follow the affine map of the triangle under their centre.
+
+use super::bind::{BoundItem, BoundPath};
+use super::{Binding, Gradient, Group, Item, Paint, PathItem, Scene};
+use crate::error::{Error, Result};
+use crate::geometry::Point;
+use kurbo::{Affine, BezPath};
+use std::sync::Arc;
+
+impl Binding {
+    /// The scene placed in the mesh whose vertex positions are `frame_vertices` (same order and
+    /// count as the mesh the binding was made on). Paths come out as polylines. Warping with the
+    /// rest vertices reproduces the flattened scene.
+    pub fn warp(&self, frame_vertices: &[Point]) -> Result<Scene> {
+        if frame_vertices.len() != self.rest.len() {
+            return Err(Error::internal(format!(
+                "frame has {} vertices, the bound mesh {}",
+                frame_vertices.len(),
+                self.rest.len()
+            )));
+        }
+        let maps = TriangleMaps::new(&self.triangles, &self.rest, frame_vertices);
+        let frame = Frame {
+            triangles: &self.triangles,
+            vertices: frame_vertices,
+        };
+        let mut next = 0usize;
+        let root = self.warp_group(&self.scene.root, &maps, &frame, &mut next)?;
+        Ok(Scene {
+            root,
+            ..self.scene_header()
+        })
+    }
+
+    fn scene_header(&self) -> Scene {
+        Scene {
+            file: self.scene.file.clone(),
+            view_box: self.scene.view_box,
+            size: self.scene.size,
+            root_transform: self.scene.root_transform,
+            root: Group {
+                id: String::new(),
+                opacity: 1.0,
+                children: Vec::new(),
+            },
+        }
+    }
+
+    fn warp_group(
+        &self,
+        g: &Group,
+        maps: &TriangleMaps,
+        frame: &Frame,
+        next: &mut usize,
+    ) -> Result<Group> {
+        let mut children = Vec::with_capacity(g.children.len());
+        for c in &g.children {
+            children.push(match c {
+                Item::Group(sub) => Item::Group(self.warp_group(sub, maps, frame, next)?),
+                Item::Path(p) => match self.items.get(*next) {
+                    Some(BoundItem::Path(b)) => {
+                        *next += 1;
+                        Item::Path(warp_path(p, b, maps, frame))
+                    }
+                    _ => {
+                        return Err(Error::internal(
+                            "artwork binding out of step with its scene",
+                        ))
+                    }
+                },
+                Item::Image(img) => match self.items.get(*next) {
+                    Some(BoundItem::Image(l)) => {
+                        *next += 1;
+                        let mut img = img.clone();
+                        img.transform = maps.affine(l.triangle) * img.transform;
+                        Item::Image(img)
+                    }
+                    _ => {
+                        return Err(Error::internal(
+                            "artwork binding out of step with its scene",
+                        ))
+                    }
+                },
+            });
+        }
+        Ok(Group {
+            id: g.id.clone(),
+            opacity: g.opacity,
+            children,
+        })
+    }
+}
+
+/// The mesh of the frame being warped into.
+struct Frame<'a> {
+    triangles: &'a [[u32; 3]],
+    vertices: &'a [Point],
+}
+
+/// The affine map of every triangle from its rest position to the frame.
+struct TriangleMaps {
+    maps: Vec<Affine>,
+}
+
+impl TriangleMaps {
+    fn new(triangles: &[[u32; 3]], rest: &[Point], frame: &[Point]) -> Self {
+        let maps = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| rest[v as usize]);
+                let [a2, b2, c2] = t.map(|v| frame[v as usize]);
+                let m0 = Affine::new([b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y, a.x, a.y]);
+                let m1 = Affine::new([
+                    b2.x - a2.x,
+                    b2.y - a2.y,
+                    c2.x - a2.x,
+                    c2.y - a2.y,
+                    a2.x,
+                    a2.y,
+                ]);
+                if m0.determinant() == 0.0 {
+                    // Never used: degenerate triangles are not located into.
+                    Affine::IDENTITY
+                } else {
+                    m1 * m0.inverse()
+                }
+            })
+            .collect();
+        TriangleMaps { maps }
+    }
+
+    fn affine(&self, triangle: u32) -> Affine {
+        self.maps[triangle as usize]
+    }
+
+    fn scale(&self, triangle: u32) -> f64 {
+        self.maps[triangle as usize].determinant().abs().sqrt()
+    }
+}
+
+fn warp_path(p: &PathItem, b: &BoundPath, maps: &TriangleMaps, frame: &Frame) -> PathItem {
+    // Barycentric placement is the triangle's affine map applied to the rest point, also for
+    // points outside the mesh (their weights extend the map).
+    let verts: Vec<kurbo::Point> = b
+        .locations
+        .iter()
+        .map(|l| super::to_kurbo(l.place(frame.triangles, frame.vertices)))
+        .collect();
+    let mut path = BezPath::new();
+    for s in &b.subpaths {
+        let pts = &verts[s.start..s.start + s.len];
+        let Some((first, rest)) = pts.split_first() else {
+            continue;
+        };
+        path.move_to(*first);
+        for q in rest {
+            path.line_to(*q);
+        }
+        if s.closed {
+            path.close_path();
+        }
+    }
+    let warp_paint = |paint: &Paint| match paint {
+        Paint::Color(c) => Paint::Color(*c),
+        Paint::Gradient(g) => Paint::Gradient(Arc::new(Gradient {
+            transform: maps.affine(b.anchor.triangle) * g.transform,
+            ..(**g).clone()
+        })),
+    };
+    let fill = p.fill.as_ref().map(|f| super::Fill {
+        paint: warp_paint(&f.paint),
+        ..f.clone()
+    });
+    let stroke = p.stroke.as_ref().map(|s| {
+        let k = median_scale(b, maps);
+        super::Stroke {
+            paint: warp_paint(&s.paint),
+            width: s.width * k,
+            dashes: s.dashes.iter().map(|d| d * k).collect(),
+            dash_offset: s.dash_offset * k,
+            ..s.clone()
+        }
+    });
+    PathItem {
+        id: p.id.clone(),
+        path,
+        fill,
+        stroke,
+        stroke_first: p.stroke_first,
+    }
+}
+
+/// The median local scale under a path's points (1 for a path without points).
+fn median_scale(b: &BoundPath, maps: &TriangleMaps) -> f64 {
+    let mut s: Vec<f64> = b.locations.iter().map(|l| maps.scale(l.triangle)).collect();
+    if s.is_empty() {
+        return maps.scale(b.anchor.triangle);
+    }
+    let mid = s.len() / 2;
+    let (_, m, _) = s.select_nth_unstable_by(mid, f64::total_cmp);
+    *m
+}
