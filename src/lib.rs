@@ -39,6 +39,7 @@ pub mod json;
 pub mod mapping;
 pub mod mesh;
 pub mod quality;
+pub mod render;
 pub mod rigid;
 pub mod tolerance;
 pub mod triangulation;

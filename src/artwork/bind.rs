@@ -10,7 +10,7 @@
 use super::{Item, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::{barycentric, orient2d, point_segment_distance, Point};
-use kurbo::{BezPath, PathEl, Shape};
+use kurbo::{BezPath, ParamCurveArclen, PathEl, Shape};
 
 /// Where a point sits in a mesh: a triangle and barycentric coordinates in it (they sum to one;
 /// all non-negative when the point is inside the triangle).
@@ -214,6 +214,9 @@ pub(crate) struct BoundPath {
     pub(crate) locations: Vec<Location>,
     /// Where the path's paint geometry (gradients) is anchored: its bounding-box centre.
     pub(crate) anchor: Location,
+    /// Flattened length over exact arc length (1 unless the path is dashed): dashes are scaled
+    /// by it so the dash pattern ends where it ends on the exact curve.
+    pub(crate) dash_ratio: f64,
 }
 
 /// What each path or image of the scene (depth first, paint order) is bound to.
@@ -283,7 +286,10 @@ fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<Bo
     for item in items {
         match item {
             Item::Group(g) => bind_items(&g.children, locator, tol, out),
-            Item::Path(p) => out.push(BoundItem::Path(bind_path(&p.path, locator, tol))),
+            Item::Path(p) => {
+                let dashed = p.stroke.as_ref().is_some_and(|s| !s.dashes.is_empty());
+                out.push(BoundItem::Path(bind_path(&p.path, dashed, locator, tol)));
+            }
             Item::Image(img) => {
                 let c = img.transform * kurbo::Point::new(img.width / 2.0, img.height / 2.0);
                 out.push(BoundItem::Image(locator.locate(Point::new(c.x, c.y))));
@@ -293,7 +299,7 @@ fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<Bo
 }
 
 /// Flattens `path` to polylines within `tol` and locates every point.
-fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
+fn bind_path(path: &BezPath, dashed: bool, locator: &PointLocator, tol: f64) -> BoundPath {
     let mut points: Vec<Point> = Vec::new();
     let mut subpaths: Vec<Subpath> = Vec::new();
     kurbo::flatten(path, tol, |el| match el {
@@ -320,7 +326,25 @@ fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
         PathEl::QuadTo(..) | PathEl::CurveTo(..) => {}
     });
     let bb = path.bounding_box().center();
+    let dash_ratio = if dashed {
+        let exact: f64 = path.segments().map(|s| s.arclen(tol * 1e-3)).sum();
+        let flat: f64 = subpaths
+            .iter()
+            .map(|s| {
+                let pts = &points[s.start..s.start + s.len];
+                crate::geometry::polyline_length(pts, s.closed)
+            })
+            .sum();
+        if exact > 0.0 && flat > 0.0 {
+            flat / exact
+        } else {
+            1.0
+        }
+    } else {
+        1.0
+    };
     BoundPath {
+        dash_ratio,
         subpaths,
         locations: points.iter().map(|&p| locator.locate(p)).collect(),
         anchor: locator.locate(Point::new(bb.x, bb.y)),

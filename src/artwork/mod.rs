@@ -30,6 +30,9 @@ mod warp;
 pub use bind::{Binding, Location, PointLocator};
 pub use scene::flatten_tolerance;
 
+#[cfg(test)]
+pub(crate) use bind::tests as bind_tests;
+
 use crate::geometry::Point;
 use kurbo::{Affine, BezPath};
 use std::sync::Arc;

@@ -41,6 +41,27 @@ impl Binding {
         })
     }
 
+    /// The scene for a frame whose mesh is `frame_vertices`: the exact input scene (curves
+    /// intact, so the frame renders exactly as the input file) when every vertex is within
+    /// `1e-9` of the mesh's diagonal of its rest position — frames t = 0 and t = 1 — and
+    /// [`Binding::warp`] otherwise. Use [`Binding::warp`] where every frame needs the same path
+    /// structure (animation keyframes).
+    pub fn place(&self, frame_vertices: &[Point]) -> Result<Scene> {
+        if frame_vertices.len() == self.rest.len() {
+            let (lo, hi) = crate::geometry::bounding_box(self.rest.iter().copied())
+                .unwrap_or((Point::ZERO, Point::ZERO));
+            let eps = 1e-9 * (hi - lo).length();
+            let at_rest = frame_vertices
+                .iter()
+                .zip(&self.rest)
+                .all(|(a, b)| a.distance(*b) <= eps);
+            if at_rest {
+                return Ok(self.scene.clone());
+            }
+        }
+        self.warp(frame_vertices)
+    }
+
     fn scene_header(&self) -> Scene {
         Scene {
             file: self.scene.file.clone(),
@@ -185,8 +206,8 @@ fn warp_path(p: &PathItem, b: &BoundPath, maps: &TriangleMaps, frame: &Frame) ->
         super::Stroke {
             paint: warp_paint(&s.paint),
             width: s.width * k,
-            dashes: s.dashes.iter().map(|d| d * k).collect(),
-            dash_offset: s.dash_offset * k,
+            dashes: s.dashes.iter().map(|d| d * k * b.dash_ratio).collect(),
+            dash_offset: s.dash_offset * k * b.dash_ratio,
             ..s.clone()
         }
     });
