@@ -12,6 +12,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 use kurbo::{Affine, BezPath};
+use std::path::Path;
 use std::str::FromStr;
 use std::sync::{Arc, OnceLock};
 
@@ -28,24 +29,74 @@ pub fn flatten_tolerance(view_box: (Point, Point), size: (f64, f64)) -> f64 {
     }
 }
 
-/// The system fonts, loaded once per process for text (usvg turns text into glyph paths).
-fn fonts() -> Arc<usvg::fontdb::Database> {
-    static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+/// The system fonts, loaded once per process for text (usvg turns text into glyph paths), and
+/// the family used for text that names none (the serif family, as in browsers).
+fn fonts() -> (Arc<usvg::fontdb::Database>, String) {
+    static FONTS: OnceLock<(Arc<usvg::fontdb::Database>, String)> = OnceLock::new();
     FONTS
         .get_or_init(|| {
             let mut db = usvg::fontdb::Database::new();
             db.load_system_fonts();
-            Arc::new(db)
+            set_generic_families(&mut db);
+            let serif = db.family_name(&usvg::fontdb::Family::Serif).to_string();
+            (Arc::new(db), serif)
         })
         .clone()
 }
 
-/// Parse options shared by every usvg parse in crmorph (system fonts loaded once).
-pub(crate) fn usvg_options() -> usvg::Options<'static> {
-    usvg::Options {
-        fontdb: fonts(),
-        ..usvg::Options::default()
+/// Points the generic families (`serif`, `sans-serif`, `monospace`) at installed fonts when
+/// fontdb's defaults (Times New Roman, Arial, Courier New) are missing, as on most Linux systems,
+/// so that text in a generic family still gets glyphs. Candidates are tried in a fixed order.
+fn set_generic_families(db: &mut usvg::fontdb::Database) {
+    let mut installed: Vec<String> = db
+        .faces()
+        .flat_map(|f| f.families.iter().map(|(name, _)| name.clone()))
+        .collect();
+    installed.sort();
+    installed.dedup();
+    let has = |name: &str| installed.binary_search(&name.to_string()).is_ok();
+    let pick = |wanted: &[&str]| -> Option<String> {
+        wanted.iter().find(|n| has(n)).map(|n| n.to_string())
+    };
+    if !has("Times New Roman") {
+        if let Some(f) = pick(&[
+            "DejaVu Serif",
+            "Liberation Serif",
+            "Noto Serif",
+            "FreeSerif",
+        ]) {
+            db.set_serif_family(f);
+        }
     }
+    if !has("Arial") {
+        if let Some(f) = pick(&["DejaVu Sans", "Liberation Sans", "Noto Sans", "FreeSans"]) {
+            db.set_sans_serif_family(f);
+        }
+    }
+    if !has("Courier New") {
+        let mono = [
+            "DejaVu Sans Mono",
+            "Liberation Mono",
+            "Noto Sans Mono",
+            "FreeMono",
+        ];
+        if let Some(f) = pick(&mono) {
+            db.set_monospace_family(f);
+        }
+    }
+}
+
+/// usvg parse options for reading a drawing: the system fonts (loaded once per process, and only
+/// for drawings with text) and the directory relative image references resolve against.
+fn usvg_options(svg: &str, resources_dir: Option<&Path>) -> usvg::Options<'static> {
+    let mut o = usvg::Options {
+        resources_dir: resources_dir.map(Path::to_path_buf),
+        ..usvg::Options::default()
+    };
+    if svg.contains("<text") || svg.contains(":text") {
+        (o.fontdb, o.font_family) = fonts();
+    }
+    o
 }
 
 /// Converts a usvg/tiny-skia transform to a kurbo affine map.
@@ -150,7 +201,19 @@ impl Scene {
     /// `file` names the drawing in errors. Unsupported features are reported with
     /// `log::warn!` (see the [module docs](super)).
     pub fn from_svg(file: &str, svg: &str, guides_group_id: &str) -> Result<Scene> {
-        let tree = usvg::Tree::from_str(svg, &usvg_options())
+        Self::from_svg_in(file, svg, guides_group_id, None)
+    }
+
+    /// [`Scene::from_svg`] with relative image references (`<image href="a.png">`) resolved
+    /// against `resources_dir` (normally the drawing's directory) instead of the working
+    /// directory.
+    pub fn from_svg_in(
+        file: &str,
+        svg: &str,
+        guides_group_id: &str,
+        resources_dir: Option<&Path>,
+    ) -> Result<Scene> {
+        let tree = usvg::Tree::from_str(svg, &usvg_options(svg, resources_dir))
             .map_err(|e| Error::input(file, format!("not a usable SVG file: {e}")))?;
         let size = (tree.size().width() as f64, tree.size().height() as f64);
         let frame = root_frame(file, svg, size)?;
@@ -527,6 +590,27 @@ mod tests {
         let vb = (Point::ZERO, Point::new(100.0, 50.0));
         assert!((flatten_tolerance(vb, (400.0, 200.0)) - 0.0625).abs() < 1e-12);
         assert!(flatten_tolerance(vb, (0.0, 0.0)) > 0.0);
+    }
+
+    #[test]
+    fn text_becomes_glyph_paths_when_fonts_exist() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="40">
+          <text x="5" y="30" font-size="20" fill="navy" font-family="sans-serif">Hi</text>
+          <text x="50" y="30" font-size="20" fill="navy">Ho</text></svg>"#;
+        let s = Scene::from_svg("t.svg", svg, "controls").unwrap();
+        let paths = s
+            .items()
+            .iter()
+            .filter(|i| matches!(i, Item::Path(_)))
+            .count();
+        if fonts().0.is_empty() {
+            assert_eq!(paths, 0, "no fonts, no glyphs");
+        } else {
+            assert!(
+                paths >= 2,
+                "both the generic and the default family resolve"
+            );
+        }
     }
 
     #[test]

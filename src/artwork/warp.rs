@@ -230,3 +230,77 @@ fn median_scale(b: &BoundPath, maps: &TriangleMaps) -> f64 {
     let (_, m, _) = s.select_nth_unstable_by(mid, f64::total_cmp);
     *m
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::artwork::bind_tests::grid;
+
+    const ART: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" width="40" height="30">
+      <circle cx="20" cy="15" r="9" fill="#abc" stroke="#123" stroke-width="2"/>
+      <path d="M-3 2 C 10 -5 30 40 43 28" fill="none" stroke="red" stroke-dasharray="2 1"/>
+    </svg>"##;
+
+    fn bound() -> (Binding, Vec<Point>) {
+        let scene = Scene::from_svg("w.svg", ART, "controls").unwrap();
+        let (pts, tris) = grid(4, 3, 40.0, 30.0);
+        (Binding::new(&scene, &pts, &tris, 0.01).unwrap(), pts)
+    }
+
+    #[test]
+    fn warping_with_the_rest_mesh_is_the_identity() {
+        let (b, rest) = bound();
+        let w = b.warp(&rest).unwrap();
+        let (wi, si) = (w.items(), b.scene().items());
+        assert_eq!(wi.len(), si.len());
+        for (a, s) in wi.iter().zip(&si) {
+            let (Item::Path(a), Item::Path(s)) = (a, s) else {
+                panic!("paths only")
+            };
+            // Every warped point is a flattened point of the exact curve, within tolerance.
+            let mut flat = Vec::new();
+            kurbo::flatten(&s.path, 0.01, |el| {
+                if let Some(p) = el.end_point() {
+                    flat.push(p)
+                }
+            });
+            let pts: Vec<kurbo::Point> = a
+                .path
+                .elements()
+                .iter()
+                .filter_map(|e| e.end_point())
+                .collect();
+            assert_eq!(pts.len(), flat.len());
+            for (p, q) in pts.iter().zip(&flat) {
+                assert!(p.distance(*q) < 1e-9);
+            }
+            let (sa, ss) = (a.stroke.as_ref().unwrap(), s.stroke.as_ref().unwrap());
+            assert!((sa.width - ss.width).abs() < 1e-12);
+            assert_eq!(a.fill, s.fill);
+        }
+        // place() hands back the exact scene at rest, polylines elsewhere.
+        let exact = b.place(&rest).unwrap();
+        assert_eq!(exact.root, b.scene().root);
+        let moved: Vec<Point> = rest.iter().map(|p| *p * 1.5).collect();
+        assert_ne!(b.place(&moved).unwrap().root, b.scene().root);
+    }
+
+    #[test]
+    fn wrong_vertex_count_is_an_error() {
+        let (b, rest) = bound();
+        assert!(b.warp(&rest[1..]).is_err());
+        assert!(b.place(&rest[1..]).is_err());
+    }
+
+    #[test]
+    fn dashes_keep_their_phase_on_the_flattened_curve() {
+        let (b, rest) = bound();
+        let w = b.warp(&rest).unwrap();
+        let Item::Path(p) = &w.root.children[1] else {
+            panic!()
+        };
+        let d = &p.stroke.as_ref().unwrap().dashes;
+        // Scaled by flattened/exact length: slightly below 1, never above.
+        assert!(d[0] <= 2.0 && d[0] > 2.0 * 0.999, "{d:?}");
+    }
+}

@@ -10,7 +10,7 @@
 mod raster;
 pub mod svg_frame;
 
-pub use raster::{frame_pixmap, frame_png, render_scene};
+pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba};
 pub use svg_frame::{frame_svg, scene_svg};
 
 use crate::artwork::{Rgba, Scene};
