@@ -225,6 +225,8 @@ pub(crate) enum BoundItem {
     Path(BoundPath),
     /// An image, anchored at its centre.
     Image(Location),
+    /// A group's clip path, one bound path per shape (comes before the group's children).
+    Clip(Vec<BoundPath>),
 }
 
 /// A scene bound to a mesh: computed once per artwork, then [`Binding::warp`] places it in the
@@ -277,6 +279,7 @@ impl Binding {
             .map(|i| match i {
                 BoundItem::Path(p) => p.locations.len(),
                 BoundItem::Image(_) => 1,
+                BoundItem::Clip(c) => c.iter().map(|p| p.locations.len()).sum(),
             })
             .sum()
     }
@@ -285,7 +288,17 @@ impl Binding {
 fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<BoundItem>) {
     for item in items {
         match item {
-            Item::Group(g) => bind_items(&g.children, locator, tol, out),
+            Item::Group(g) => {
+                if let Some(c) = &g.clip {
+                    let shapes = c
+                        .shapes
+                        .iter()
+                        .map(|s| bind_path(&s.path, false, locator, tol))
+                        .collect();
+                    out.push(BoundItem::Clip(shapes));
+                }
+                bind_items(&g.children, locator, tol, out)
+            }
             Item::Path(p) => {
                 let dashed = p.stroke.as_ref().is_some_and(|s| !s.dashes.is_empty());
                 out.push(BoundItem::Path(bind_path(&p.path, dashed, locator, tol)));

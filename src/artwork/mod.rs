@@ -17,10 +17,11 @@
 //!
 //! Supported: solid, linear and radial gradient paint (stops, spread, `gradientTransform`), fill
 //! rule, fill/stroke opacity, stroke width, caps, joins, miter limit, dashes, `paint-order`, group
-//! opacity, text (as the glyph outlines usvg produces from the system fonts; without fonts text
-//! has no glyphs), embedded PNG/JPEG/GIF/WebP images. Not supported, with a `log::warn!`: clip
-//! paths and masks (content rendered unclipped), filters (content rendered unfiltered), patterns
-//! (that paint is dropped), blend modes and isolation (rendered as normal), nested SVG images
+//! opacity, clip paths (warped like paths), text (as the glyph outlines usvg produces from the
+//! system fonts; without fonts text has no glyphs), embedded PNG/JPEG/GIF/WebP images. Not
+//! supported, with a `log::warn!`: a clip path's own `clip-path` (ignored: the outer clip
+//! applies alone), masks (content rendered unmasked), filters (content rendered unfiltered),
+//! patterns (that paint is dropped), blend modes (rendered as normal), nested SVG images
 //! (skipped).
 
 mod bind;
@@ -76,15 +77,34 @@ pub struct Scene {
     pub root: Group,
 }
 
-/// A group: its children composite together, then onto the parent with `opacity`.
+/// A group: its children composite together, are clipped, then drawn onto the parent with
+/// `opacity`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Group {
     /// The group's id in the input (empty when it had none).
     pub id: String,
     /// Group opacity in [0, 1].
     pub opacity: f64,
+    /// The clip path, if any: only what lies inside one of its shapes is drawn.
+    pub clip: Option<Clip>,
     /// Children in paint order.
     pub children: Vec<Item>,
+}
+
+/// A clip path: the union of its shapes, in root user space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clip {
+    /// The shapes; an empty list clips everything away.
+    pub shapes: Vec<ClipShape>,
+}
+
+/// One shape of a clip path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClipShape {
+    /// The outline in root user space.
+    pub path: BezPath,
+    /// `true` for `clip-rule: evenodd`.
+    pub even_odd: bool,
 }
 
 /// One artwork element.

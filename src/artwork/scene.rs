@@ -6,8 +6,8 @@
 //! root's `viewBox`, `preserveAspectRatio` and `transform` and undone.
 
 use super::{
-    Fill, Gradient, GradientKind, GradientStop, Group, ImageItem, Item, LineCap, LineJoin, Paint,
-    PathItem, Rgba, Scene, Spread, Stroke,
+    Clip, ClipShape, Fill, Gradient, GradientKind, GradientStop, Group, ImageItem, Item, LineCap,
+    LineJoin, Paint, PathItem, Rgba, Scene, Spread, Stroke,
 };
 use crate::error::{Error, Result};
 use crate::geometry::Point;
@@ -225,6 +225,7 @@ impl Scene {
         let mut root = Group {
             id: String::new(),
             opacity: 1.0,
+            clip: None,
             children: Vec::new(),
         };
         reader.children(tree.root(), &mut root.children)?;
@@ -253,7 +254,7 @@ impl Reader<'_> {
                         continue;
                     }
                     if let Some(mut g) = self.group(sub)? {
-                        if g.id.is_empty() && g.opacity == 1.0 {
+                        if g.id.is_empty() && g.opacity == 1.0 && g.clip.is_none() {
                             // An anonymous opaque group (usvg's viewBox wrapper, a bare
                             // transform) composites exactly like its children alone.
                             out.append(&mut g.children);
@@ -288,12 +289,6 @@ impl Reader<'_> {
         } else {
             format!("group '{}'", g.id())
         };
-        if g.clip_path().is_some() {
-            log::warn!(
-                "{}: {what}: clip paths are not supported; rendered unclipped",
-                self.file
-            );
-        }
         if g.mask().is_some() {
             log::warn!(
                 "{}: {what}: masks are not supported; rendered unmasked",
@@ -317,11 +312,49 @@ impl Reader<'_> {
         if children.is_empty() {
             return Ok(None);
         }
+        let clip = g.clip_path().map(|cp| {
+            let base = self.user_from_canvas * affine(g.abs_transform()) * affine(cp.transform());
+            if cp.clip_path().is_some() {
+                log::warn!(
+                    "{}: {what}: a clip path's own clip-path is not supported; ignored",
+                    self.file
+                );
+            }
+            let mut shapes = Vec::new();
+            self.clip_shapes(cp.root(), base, &what, &mut shapes);
+            Clip { shapes }
+        });
         Ok(Some(Group {
             id: g.id().to_string(),
             opacity: g.opacity().get() as f64,
+            clip,
             children,
         }))
+    }
+
+    /// The shapes of a clip path's content, `to_user` mapping `g`'s coordinates to user space.
+    fn clip_shapes(&self, g: &usvg::Group, to_user: Affine, what: &str, out: &mut Vec<ClipShape>) {
+        for node in g.children() {
+            match node {
+                usvg::Node::Path(p) if p.is_visible() => out.push(ClipShape {
+                    path: bez_path(p.data(), to_user),
+                    even_odd: p
+                        .fill()
+                        .is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd),
+                }),
+                usvg::Node::Text(t) => self.clip_shapes(t.flattened(), to_user, what, out),
+                usvg::Node::Group(sub) => {
+                    if sub.clip_path().is_some() {
+                        log::warn!(
+                            "{}: {what}: clip-path inside a clip path is not supported; ignored",
+                            self.file
+                        );
+                    }
+                    self.clip_shapes(sub, to_user * affine(sub.transform()), what, out);
+                }
+                _ => {}
+            }
+        }
     }
 
     fn path(&self, p: &usvg::Path) -> Result<Option<PathItem>> {
@@ -329,20 +362,7 @@ impl Reader<'_> {
             return Ok(None);
         }
         let to_user = self.user_from_canvas * affine(p.abs_transform());
-        let mut path = BezPath::new();
-        for seg in p.data().segments() {
-            use usvg::tiny_skia_path::PathSegment as S;
-            let k = |q: usvg::tiny_skia_path::Point| {
-                to_user * kurbo::Point::new(q.x as f64, q.y as f64)
-            };
-            match seg {
-                S::MoveTo(a) => path.move_to(k(a)),
-                S::LineTo(a) => path.line_to(k(a)),
-                S::QuadTo(a, b) => path.quad_to(k(a), k(b)),
-                S::CubicTo(a, b, c) => path.curve_to(k(a), k(b), k(c)),
-                S::Close => path.close_path(),
-            }
-        }
+        let path = bez_path(p.data(), to_user);
         let finite = path.elements().iter().all(|el| {
             el.end_point()
                 .is_none_or(|q| q.x.is_finite() && q.y.is_finite())
@@ -482,6 +502,23 @@ impl Reader<'_> {
             ),
         })
     }
+}
+
+/// A usvg path's data mapped by `to_user`, as a kurbo path.
+fn bez_path(data: &usvg::tiny_skia_path::Path, to_user: Affine) -> BezPath {
+    use usvg::tiny_skia_path::PathSegment as S;
+    let k = |q: usvg::tiny_skia_path::Point| to_user * kurbo::Point::new(q.x as f64, q.y as f64);
+    let mut path = BezPath::new();
+    for seg in data.segments() {
+        match seg {
+            S::MoveTo(a) => path.move_to(k(a)),
+            S::LineTo(a) => path.line_to(k(a)),
+            S::QuadTo(a, b) => path.quad_to(k(a), k(b)),
+            S::CubicTo(a, b, c) => path.curve_to(k(a), k(b), k(c)),
+            S::Close => path.close_path(),
+        }
+    }
+    path
 }
 
 fn rgb(c: usvg::Color) -> Rgba {

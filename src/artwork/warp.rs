@@ -10,7 +10,7 @@
 //! - images follow the affine map of the triangle under their centre.
 
 use super::bind::{BoundItem, BoundPath};
-use super::{Binding, Gradient, Group, Item, Paint, PathItem, Scene};
+use super::{Binding, Clip, ClipShape, Gradient, Group, Item, Paint, PathItem, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 use kurbo::{Affine, BezPath};
@@ -71,6 +71,7 @@ impl Binding {
             root: Group {
                 id: String::new(),
                 opacity: 1.0,
+                clip: None,
                 children: Vec::new(),
             },
         }
@@ -83,6 +84,25 @@ impl Binding {
         frame: &Frame,
         next: &mut usize,
     ) -> Result<Group> {
+        let clip = match &g.clip {
+            None => None,
+            Some(c) => match self.items.get(*next) {
+                Some(BoundItem::Clip(bound)) if bound.len() == c.shapes.len() => {
+                    *next += 1;
+                    let shapes = c
+                        .shapes
+                        .iter()
+                        .zip(bound)
+                        .map(|(s, b)| ClipShape {
+                            path: polylines(b, frame),
+                            even_odd: s.even_odd,
+                        })
+                        .collect();
+                    Some(Clip { shapes })
+                }
+                _ => return Err(out_of_step()),
+            },
+        };
         let mut children = Vec::with_capacity(g.children.len());
         for c in &g.children {
             children.push(match c {
@@ -92,11 +112,7 @@ impl Binding {
                         *next += 1;
                         Item::Path(warp_path(p, b, maps, frame))
                     }
-                    _ => {
-                        return Err(Error::internal(
-                            "artwork binding out of step with its scene",
-                        ))
-                    }
+                    _ => return Err(out_of_step()),
                 },
                 Item::Image(img) => match self.items.get(*next) {
                     Some(BoundItem::Image(l)) => {
@@ -105,20 +121,42 @@ impl Binding {
                         img.transform = maps.affine(l.triangle) * img.transform;
                         Item::Image(img)
                     }
-                    _ => {
-                        return Err(Error::internal(
-                            "artwork binding out of step with its scene",
-                        ))
-                    }
+                    _ => return Err(out_of_step()),
                 },
             });
         }
         Ok(Group {
             id: g.id.clone(),
             opacity: g.opacity,
+            clip,
             children,
         })
     }
+}
+
+fn out_of_step() -> Error {
+    Error::internal("artwork binding out of step with its scene")
+}
+
+/// A bound path's points placed in the frame, as polylines with the original subpaths.
+fn polylines(b: &BoundPath, frame: &Frame) -> BezPath {
+    let mut path = BezPath::new();
+    for s in &b.subpaths {
+        let mut pts = b.locations[s.start..s.start + s.len]
+            .iter()
+            .map(|l| super::to_kurbo(l.place(frame.triangles, frame.vertices)));
+        let Some(first) = pts.next() else {
+            continue;
+        };
+        path.move_to(first);
+        for q in pts {
+            path.line_to(q);
+        }
+        if s.closed {
+            path.close_path();
+        }
+    }
+    path
 }
 
 /// The mesh of the frame being warped into.
@@ -171,25 +209,7 @@ impl TriangleMaps {
 fn warp_path(p: &PathItem, b: &BoundPath, maps: &TriangleMaps, frame: &Frame) -> PathItem {
     // Barycentric placement is the triangle's affine map applied to the rest point, also for
     // points outside the mesh (their weights extend the map).
-    let verts: Vec<kurbo::Point> = b
-        .locations
-        .iter()
-        .map(|l| super::to_kurbo(l.place(frame.triangles, frame.vertices)))
-        .collect();
-    let mut path = BezPath::new();
-    for s in &b.subpaths {
-        let pts = &verts[s.start..s.start + s.len];
-        let Some((first, rest)) = pts.split_first() else {
-            continue;
-        };
-        path.move_to(*first);
-        for q in rest {
-            path.line_to(*q);
-        }
-        if s.closed {
-            path.close_path();
-        }
-    }
+    let path = polylines(b, frame);
     let warp_paint = |paint: &Paint| match paint {
         Paint::Color(c) => Paint::Color(*c),
         Paint::Gradient(g) => Paint::Gradient(Arc::new(Gradient {

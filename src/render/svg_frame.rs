@@ -280,6 +280,20 @@ impl Document {
                     if sub.opacity != 1.0 {
                         a.push(("opacity", sig(sub.opacity)));
                     }
+                    if let Some(clip) = &sub.clip {
+                        let id = format!("{prefix}{}", self.next_id);
+                        self.next_id += 1;
+                        defs.open("clipPath", &[("id", id.clone())]);
+                        for shape in &clip.shapes {
+                            let mut sa = vec![("d", self.path_data(&shape.path))];
+                            if shape.even_odd {
+                                sa.push(("clip-rule", "evenodd".into()));
+                            }
+                            defs.empty("path", &sa);
+                        }
+                        defs.close("clipPath");
+                        a.push(("clip-path", format!("url(#{id})")));
+                    }
                     body.open("g", &a);
                     self.children(sub, prefix, defs, body);
                     body.close("g");
@@ -291,7 +305,7 @@ impl Document {
     }
 
     fn path(&mut self, p: &PathItem, prefix: &str, defs: &mut Xml, body: &mut Xml) {
-        let d = self.path_data(p);
+        let d = self.path_data(&p.path);
         if d.is_empty() {
             return;
         }
@@ -357,10 +371,10 @@ impl Document {
         }
     }
 
-    fn path_data(&self, p: &PathItem) -> String {
+    fn path_data(&self, path: &kurbo::BezPath) -> String {
         let mut d = String::new();
         let pt = |q: kurbo::Point| format!("{} {}", self.num(q.x), self.num(q.y));
-        for el in p.path.elements() {
+        for el in path.elements() {
             if !d.is_empty() {
                 d.push(' ');
             }

@@ -46,7 +46,8 @@ fn source_svg() -> String {
   </defs>
   <rect x="5" y="5" width="110" height="80" rx="8" fill="url(#sky)" stroke="#1d3557" stroke-width="3" stroke-linejoin="round"/>
   <circle cx="40" cy="38" r="18" fill="url(#sun)"/>
-  <g transform="translate(70 50) rotate(-15)" opacity="0.6">
+  <clipPath id="round"><circle cx="0" cy="0" r="19"/></clipPath>
+  <g transform="translate(70 50) rotate(-15)" opacity="0.6" clip-path="url(#round)">
     <rect x="-20" y="-12" width="40" height="24" fill="#e63946"/>
     <rect x="-10" y="-20" width="20" height="30" fill="#2a9d8f" stroke="#000" stroke-width="1.5"/>
   </g>
@@ -348,7 +349,7 @@ fn warping_carries_strokes_gradients_and_images() {
     let rest = f.src_bind.warp(&f.src_mesh).unwrap();
     let (items_w, items_r) = (w.items(), rest.items());
     assert_eq!(items_w.len(), items_r.len());
-    let mut seen = (0, 0, 0);
+    let mut seen = (0, 0, 0, 0);
     for (a, b) in items_w.iter().zip(&items_r) {
         match (a, b) {
             (Item::Path(a), Item::Path(b)) => {
@@ -393,11 +394,20 @@ fn warping_carries_strokes_gradients_and_images() {
                 assert!(d < 1e-9);
                 seen.2 += 1;
             }
-            (Item::Group(a), Item::Group(b)) => assert_eq!(a.opacity, b.opacity),
+            (Item::Group(a), Item::Group(b)) => {
+                assert_eq!(a.opacity, b.opacity);
+                assert_eq!(a.clip.is_some(), b.clip.is_some());
+                if let (Some(ca), Some(cb)) = (&a.clip, &b.clip) {
+                    let pa = ca.shapes[0].path.elements()[0].end_point().unwrap();
+                    let pb = cb.shapes[0].path.elements()[0].end_point().unwrap();
+                    assert!((pa - (pb.to_vec2() * 2.0).to_point()).hypot() < 1e-9);
+                    seen.3 += 1;
+                }
+            }
             _ => panic!("structure differs"),
         }
     }
-    assert_eq!(seen, (3, 2, 1), "strokes, gradient fills, images");
+    assert_eq!(seen, (3, 2, 1, 1), "strokes, gradient fills, images, clips");
 }
 
 #[test]
