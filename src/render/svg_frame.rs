@@ -10,8 +10,8 @@
 //! ```text
 //! <g filter="url(#crmorph-blend)">            filter region: the view and its copy to the right
 //!   <g clip-path=view> S_t </g>               the source, clipped to the view
-//!   <g translate(D,0)><g clip-path=view> T_t  the target, clipped, moved one view width right
-//! </g>
+//!   <g translate(D,0)><g clip-path=view> T_t  the target, clipped, moved right by D: the view's
+//! </g>                                        width rounded up to whole output pixels
 //! feOffset dx=−D of SourceGraphic             brings T_t over S_t
 //! feComposite arithmetic k2=1−t k3=t          (1−t)·S + t·T on premultiplied RGBA, limited to the view
 //! ```
@@ -61,6 +61,17 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     let mut body = Xml::new();
     let (lo, hi) = opts.view_box;
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    // The target's shift D: at least the view's width, and a whole number of output pixels so
+    // that feOffset moves pixels without resampling them (which would blur the target).
+    let px = {
+        let (sx, sy) = (opts.size.0 as f64 / w, opts.size.1 as f64 / h);
+        sx.min(sy) // the uniform scale of the default `xMidYMid meet`
+    };
+    let shift = if px.is_finite() && px > 0.0 {
+        (w * px).ceil() / px
+    } else {
+        w
+    };
     let decimals = doc.decimals;
     let n = |x: f64| fixed(x, decimals);
     // The clip and filter definitions.
@@ -82,7 +93,7 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
             ("filterUnits", "userSpaceOnUse".into()),
             ("x", n(lo.x)),
             ("y", n(lo.y)),
-            ("width", n(2.0 * w)),
+            ("width", n(w + shift)),
             ("height", n(h)),
             ("color-interpolation-filters", "sRGB".into()),
         ],
@@ -91,7 +102,7 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
         "feOffset",
         &[
             ("in", "SourceGraphic".into()),
-            ("dx", n(-w)),
+            ("dx", n(-shift)),
             ("dy", "0".into()),
             ("result", "target".into()),
         ],
@@ -117,7 +128,7 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     body.open("g", &[("clip-path", "url(#crmorph-view)".into())]);
     doc.side(source, "s", &mut defs, &mut body);
     body.close("g");
-    body.open("g", &[("transform", format!("translate({} 0)", n(w)))]);
+    body.open("g", &[("transform", format!("translate({} 0)", n(shift)))]);
     body.open("g", &[("clip-path", "url(#crmorph-view)".into())]);
     doc.side(target, "t", &mut defs, &mut body);
     body.close("g");

@@ -424,3 +424,33 @@ fn png_round_trips() {
         assert!(a.abs_diff(*b) <= 1);
     }
 }
+
+#[test]
+fn blend_shift_is_whole_pixels_at_odd_scales() {
+    let f = fixture();
+    let o = FrameOptions {
+        size: (200, 130),
+        ..opts()
+    };
+    let (s, g) = f.warped(0.5);
+    let svg = frame_svg(&s, &g, 0.5, &o).unwrap();
+    let dx: f64 = svg
+        .split("dx=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    // The view is 120 × 90 at a uniform 130/90 px per unit: 173.3 px wide.
+    let px = -dx * 130.0 / 90.0;
+    assert!(px >= 173.3 && (px - px.round()).abs() < 0.01, "{px}");
+    let raster = frame_pixmap(&s, &g, 0.5, &o).unwrap();
+    assert_close(
+        "odd-scale",
+        &raster,
+        &resvg_render(&svg, o.size),
+        OUTLIER_FRACTION,
+    );
+}
