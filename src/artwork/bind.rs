@@ -10,7 +10,7 @@
 use super::{Item, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::{barycentric, orient2d, point_segment_distance, Point};
-use kurbo::{BezPath, ParamCurveArclen, PathEl, Shape};
+use kurbo::{Affine, BezPath, ParamCurveArclen, PathEl, Shape};
 
 /// Where a point sits in a mesh: a triangle and barycentric coordinates in it (they sum to one;
 /// all non-negative when the point is inside the triangle).
@@ -214,15 +214,23 @@ pub(crate) struct BoundPath {
     pub(crate) locations: Vec<Location>,
     /// Where the path's paint geometry (gradients) is anchored: its bounding-box centre.
     pub(crate) anchor: Location,
-    /// Flattened length over exact arc length (1 unless the path is dashed): dashes are scaled
-    /// by it so the dash pattern ends where it ends on the exact curve.
-    pub(crate) dash_ratio: f64,
+}
+
+/// A path item bound to the mesh: its outline, and for a dashed stroke the dashes themselves.
+///
+/// Dashes are cut on the exact curve once and then carried by the mesh like any other
+/// geometry, so in a morph they travel with the artwork instead of sliding along the path, and
+/// flattening cannot shift them.
+#[derive(Debug, Clone)]
+pub(crate) struct BoundPathItem {
+    pub(crate) outline: BoundPath,
+    pub(crate) dashes: Option<BoundPath>,
 }
 
 /// What each path or image of the scene (depth first, paint order) is bound to.
 #[derive(Debug, Clone)]
 pub(crate) enum BoundItem {
-    Path(BoundPath),
+    Path(BoundPathItem),
     /// An image, anchored at its centre.
     Image(Location),
     /// A group's clip path, one bound path per shape (comes before the group's children).
@@ -277,7 +285,9 @@ impl Binding {
         self.items
             .iter()
             .map(|i| match i {
-                BoundItem::Path(p) => p.locations.len(),
+                BoundItem::Path(p) => {
+                    p.outline.locations.len() + p.dashes.as_ref().map_or(0, |d| d.locations.len())
+                }
                 BoundItem::Image(_) => 1,
                 BoundItem::Clip(c) => c.iter().map(|p| p.locations.len()).sum(),
             })
@@ -293,15 +303,22 @@ fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<Bo
                     let shapes = c
                         .shapes
                         .iter()
-                        .map(|s| bind_path(&s.path, false, locator, tol))
+                        .map(|s| bind_path(&s.path, locator, tol))
                         .collect();
                     out.push(BoundItem::Clip(shapes));
                 }
                 bind_items(&g.children, locator, tol, out)
             }
             Item::Path(p) => {
-                let dashed = p.stroke.as_ref().is_some_and(|s| !s.dashes.is_empty());
-                out.push(BoundItem::Path(bind_path(&p.path, dashed, locator, tol)));
+                let dashes = p
+                    .stroke
+                    .as_ref()
+                    .and_then(|st| cut_dashes(&p.path, st, &p.id))
+                    .map(|d| bind_path(&d, locator, tol));
+                out.push(BoundItem::Path(BoundPathItem {
+                    outline: bind_path(&p.path, locator, tol),
+                    dashes,
+                }));
             }
             Item::Image(img) => {
                 let c = img.transform * kurbo::Point::new(img.width / 2.0, img.height / 2.0);
@@ -311,8 +328,33 @@ fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<Bo
     }
 }
 
+/// Most dashes cut from one path; a pattern finer than this (a dotted hairline around a huge
+/// shape) is left to the renderer's own dashing.
+const MAX_DASHES: f64 = 20_000.0;
+
+/// The dashes of a dashed stroke as open subpaths in user space, cut on the exact curve in the
+/// space the pattern is measured in (user space, or the pen's frame). `None` for a solid
+/// stroke, an invalid pattern (SVG then draws it solid; usvg already drops those), or too many
+/// dashes.
+pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Option<BezPath> {
+    let d = &stroke.dashes;
+    let period: f64 = d.iter().sum();
+    if d.is_empty() || d.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || !(period > 0.0) {
+        return None;
+    }
+    let frame = stroke.frame.unwrap_or(Affine::IDENTITY);
+    let local = frame.inverse() * path.clone();
+    let length: f64 = local.segments().map(|s| s.arclen(1e-3 * period)).sum();
+    if !(length / period <= MAX_DASHES) {
+        log::warn!("element '{id}': dash pattern too fine to cut; left to the renderer");
+        return None;
+    }
+    let cut = BezPath::from_vec(kurbo::dash(local.iter(), stroke.dash_offset, d).collect());
+    Some(frame * cut)
+}
+
 /// Flattens `path` to polylines within `tol` and locates every point.
-fn bind_path(path: &BezPath, dashed: bool, locator: &PointLocator, tol: f64) -> BoundPath {
+fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
     let mut points: Vec<Point> = Vec::new();
     let mut subpaths: Vec<Subpath> = Vec::new();
     kurbo::flatten(path, tol, |el| match el {
@@ -339,25 +381,7 @@ fn bind_path(path: &BezPath, dashed: bool, locator: &PointLocator, tol: f64) -> 
         PathEl::QuadTo(..) | PathEl::CurveTo(..) => {}
     });
     let bb = path.bounding_box().center();
-    let dash_ratio = if dashed {
-        let exact: f64 = path.segments().map(|s| s.arclen(tol * 1e-3)).sum();
-        let flat: f64 = subpaths
-            .iter()
-            .map(|s| {
-                let pts = &points[s.start..s.start + s.len];
-                crate::geometry::polyline_length(pts, s.closed)
-            })
-            .sum();
-        if exact > 0.0 && flat > 0.0 {
-            flat / exact
-        } else {
-            1.0
-        }
-    } else {
-        1.0
-    };
     BoundPath {
-        dash_ratio,
         subpaths,
         locations: points.iter().map(|&p| locator.locate(p)).collect(),
         anchor: locator.locate(Point::new(bb.x, bb.y)),

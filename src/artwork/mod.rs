@@ -144,7 +144,7 @@ pub struct Fill {
     pub even_odd: bool,
 }
 
-/// A stroke; widths and dashes are in root user units.
+/// A stroke; widths and dashes are in root user units, or in the units of `frame` when set.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stroke {
     /// What it is painted with.
@@ -163,6 +163,10 @@ pub struct Stroke {
     pub dashes: Vec<f64>,
     /// Dash offset in user units.
     pub dash_offset: f64,
+    /// For a pen that is not round in user space (the input stroked under a non-uniform scale
+    /// or a skew): the local frame (local → user space) in which `width` and the dashes are
+    /// measured, so the pen keeps its shape. `None`: they are in user units.
+    pub frame: Option<Affine>,
 }
 
 /// Line cap of a stroke (`stroke-linecap`).

@@ -381,7 +381,13 @@ impl Reader<'_> {
                 even_odd: f.rule() == usvg::FillRule::EvenOdd,
             })
         });
-        let scale = to_user.determinant().abs().sqrt();
+        // A pen that stays round in user space is measured in user units; otherwise it keeps
+        // the element's frame so that its shape survives.
+        let (scale, frame) = if is_conformal(to_user) {
+            (to_user.determinant().abs().sqrt(), None)
+        } else {
+            (1.0, Some(to_user))
+        };
         let stroke = p.stroke().and_then(|s| {
             Some(Stroke {
                 paint: self.paint(s.paint(), to_user, p.id())?,
@@ -404,6 +410,7 @@ impl Reader<'_> {
                     .map(|d| d.iter().map(|x| *x as f64 * scale).collect())
                     .unwrap_or_default(),
                 dash_offset: s.dashoffset() as f64 * scale,
+                frame,
             })
         });
         if fill.is_none() && stroke.is_none() {
@@ -502,6 +509,15 @@ impl Reader<'_> {
             ),
         })
     }
+}
+
+/// Whether an affine map is a similarity (rotation, uniform scale, reflection, translation):
+/// it maps round pens to round pens.
+fn is_conformal(m: Affine) -> bool {
+    let [a, b, c, d, _, _] = m.as_coeffs();
+    let (p, q, r) = (a * a + b * b, c * c + d * d, a * c + b * d);
+    let eps = 1e-9 * (p + q);
+    (p - q).abs() <= eps && r.abs() <= eps
 }
 
 /// A usvg path's data mapped by `to_user`, as a kurbo path.

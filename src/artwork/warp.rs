@@ -9,7 +9,7 @@
 //!   centre;
 //! - images follow the affine map of the triangle under their centre.
 
-use super::bind::{BoundItem, BoundPath};
+use super::bind::{BoundItem, BoundPath, BoundPathItem};
 use super::{Binding, Clip, ClipShape, Gradient, Group, Item, Paint, PathItem, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
@@ -105,25 +105,22 @@ impl Binding {
         };
         let mut children = Vec::with_capacity(g.children.len());
         for c in &g.children {
-            children.push(match c {
-                Item::Group(sub) => Item::Group(self.warp_group(sub, maps, frame, next)?),
-                Item::Path(p) => match self.items.get(*next) {
-                    Some(BoundItem::Path(b)) => {
-                        *next += 1;
-                        Item::Path(warp_path(p, b, maps, frame))
-                    }
-                    _ => return Err(out_of_step()),
-                },
-                Item::Image(img) => match self.items.get(*next) {
-                    Some(BoundItem::Image(l)) => {
-                        *next += 1;
-                        let mut img = img.clone();
-                        img.transform = maps.affine(l.triangle) * img.transform;
-                        Item::Image(img)
-                    }
-                    _ => return Err(out_of_step()),
-                },
-            });
+            match (c, self.items.get(*next)) {
+                (Item::Group(sub), _) => {
+                    children.push(Item::Group(self.warp_group(sub, maps, frame, next)?));
+                }
+                (Item::Path(p), Some(BoundItem::Path(b))) => {
+                    *next += 1;
+                    children.extend(warp_path(p, b, maps, frame).into_iter().map(Item::Path));
+                }
+                (Item::Image(img), Some(BoundItem::Image(l))) => {
+                    *next += 1;
+                    let mut img = img.clone();
+                    img.transform = maps.affine(l.triangle) * img.transform;
+                    children.push(Item::Image(img));
+                }
+                _ => return Err(out_of_step()),
+            }
         }
         Ok(Group {
             id: g.id.clone(),
@@ -206,14 +203,14 @@ impl TriangleMaps {
     }
 }
 
-fn warp_path(p: &PathItem, b: &BoundPath, maps: &TriangleMaps, frame: &Frame) -> PathItem {
-    // Barycentric placement is the triangle's affine map applied to the rest point, also for
-    // points outside the mesh (their weights extend the map).
-    let path = polylines(b, frame);
+/// A bound path item placed in the frame: one path, or for a cut dashed stroke a fill-only
+/// path and a stroke-only path of the dashes, in the item's paint order.
+fn warp_path(p: &PathItem, b: &BoundPathItem, maps: &TriangleMaps, frame: &Frame) -> Vec<PathItem> {
+    let o = &b.outline;
     let warp_paint = |paint: &Paint| match paint {
         Paint::Color(c) => Paint::Color(*c),
         Paint::Gradient(g) => Paint::Gradient(Arc::new(Gradient {
-            transform: maps.affine(b.anchor.triangle) * g.transform,
+            transform: maps.affine(o.anchor.triangle) * g.transform,
             ..(**g).clone()
         })),
     };
@@ -222,22 +219,61 @@ fn warp_path(p: &PathItem, b: &BoundPath, maps: &TriangleMaps, frame: &Frame) ->
         ..f.clone()
     });
     let stroke = p.stroke.as_ref().map(|s| {
-        let k = median_scale(b, maps);
+        // A round pen scales by the median local scale under the path; a shaped pen's frame
+        // follows the local affine map at the path's anchor.
+        let (k, pen) = match s.frame {
+            None => (median_scale(o, maps), None),
+            Some(f) => (1.0, Some(maps.affine(o.anchor.triangle) * f)),
+        };
+        let cut = b.dashes.is_some();
         super::Stroke {
             paint: warp_paint(&s.paint),
             width: s.width * k,
-            dashes: s.dashes.iter().map(|d| d * k * b.dash_ratio).collect(),
-            dash_offset: s.dash_offset * k * b.dash_ratio,
+            dashes: if cut {
+                Vec::new()
+            } else {
+                s.dashes.iter().map(|d| d * k).collect()
+            },
+            dash_offset: if cut { 0.0 } else { s.dash_offset * k },
+            frame: pen,
             ..s.clone()
         }
     });
-    PathItem {
-        id: p.id.clone(),
-        path,
-        fill,
-        stroke,
-        stroke_first: p.stroke_first,
+    // Barycentric placement is the triangle's affine map applied to the rest point, also for
+    // points outside the mesh (their weights extend the map).
+    let outline = polylines(o, frame);
+    let Some(dashes) = &b.dashes else {
+        return vec![PathItem {
+            id: p.id.clone(),
+            path: outline,
+            fill,
+            stroke,
+            stroke_first: p.stroke_first,
+        }];
+    };
+    let mut out = Vec::with_capacity(2);
+    if fill.is_some() {
+        out.push(PathItem {
+            id: p.id.clone(),
+            path: outline,
+            fill,
+            stroke: None,
+            stroke_first: false,
+        });
     }
+    let dashed = PathItem {
+        id: p.id.clone(),
+        path: polylines(dashes, frame),
+        fill: None,
+        stroke,
+        stroke_first: false,
+    };
+    if p.stroke_first {
+        out.insert(0, dashed);
+    } else {
+        out.push(dashed);
+    }
+    out
 }
 
 /// The median local scale under a path's points (1 for a path without points).
@@ -277,6 +313,9 @@ mod tests {
             let (Item::Path(a), Item::Path(s)) = (a, s) else {
                 panic!("paths only")
             };
+            if s.stroke.as_ref().is_some_and(|s| !s.dashes.is_empty()) {
+                continue; // cut into dashes: see the dash test
+            }
             // Every warped point is a flattened point of the exact curve, within tolerance.
             let mut flat = Vec::new();
             kurbo::flatten(&s.path, 0.01, |el| {
@@ -313,14 +352,42 @@ mod tests {
     }
 
     #[test]
-    fn dashes_keep_their_phase_on_the_flattened_curve() {
+    fn dashes_are_cut_on_the_exact_curve_and_carried() {
         let (b, rest) = bound();
         let w = b.warp(&rest).unwrap();
+        // The dashed path became a stroke-only path of dashes with no dash array.
         let Item::Path(p) = &w.root.children[1] else {
+            panic!("{}", w.root.children.len())
+        };
+        assert!(p.fill.is_none());
+        let s = p.stroke.as_ref().unwrap();
+        assert!(s.dashes.is_empty());
+        let subpaths = p
+            .path
+            .elements()
+            .iter()
+            .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+            .count();
+        // Each dash is 2 long on a period of 3: the curve's length / 3, give or take one.
+        let Item::Path(orig) = &b.scene().root.children[1] else {
             panic!()
         };
-        let d = &p.stroke.as_ref().unwrap().dashes;
-        // Scaled by flattened/exact length: slightly below 1, never above.
-        assert!(d[0] <= 2.0 && d[0] > 2.0 * 0.999, "{d:?}");
+        let len: f64 = orig
+            .path
+            .segments()
+            .map(|s| kurbo::ParamCurveArclen::arclen(&s, 1e-6))
+            .sum();
+        assert!(
+            (subpaths as f64 - len / 3.0).abs() <= 1.0,
+            "{subpaths} {len}"
+        );
+        // Scaling the mesh scales the dashes with it (they do not slide or re-cut).
+        let big: Vec<Point> = rest.iter().map(|p| *p * 2.0).collect();
+        let wb = b.warp(&big).unwrap();
+        let Item::Path(pb) = &wb.root.children[1] else {
+            panic!()
+        };
+        assert_eq!(pb.path.elements().len(), p.path.elements().len());
+        assert!((pb.stroke.as_ref().unwrap().width - 2.0).abs() < 1e-9);
     }
 }

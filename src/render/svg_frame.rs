@@ -296,7 +296,7 @@ impl Document {
                         self.next_id += 1;
                         defs.open("clipPath", &[("id", id.clone())]);
                         for shape in &clip.shapes {
-                            let mut sa = vec![("d", self.path_data(&shape.path))];
+                            let mut sa = vec![("d", self.path_data(&shape.path, self.decimals))];
                             if shape.even_odd {
                                 sa.push(("clip-rule", "evenodd".into()));
                             }
@@ -316,14 +316,37 @@ impl Document {
     }
 
     fn path(&mut self, p: &PathItem, prefix: &str, defs: &mut Xml, body: &mut Xml) {
-        let d = self.path_data(&p.path);
+        // A shaped pen is drawn in its own frame: the outline mapped back into it, the frame as
+        // the element's transform, gradients re-expressed in it.
+        let frame = p
+            .stroke
+            .as_ref()
+            .and_then(|s| s.frame)
+            .filter(|f| f.determinant().is_finite() && f.determinant() != 0.0);
+        let (d, to_local) = match frame {
+            None => (self.path_data(&p.path, self.decimals), Affine::IDENTITY),
+            Some(f) => {
+                let inv = f.inverse();
+                let [a, b, c, dd, _, _] = f.as_coeffs();
+                // Local units are this many user units at most: keep 1/100 px in them too.
+                let stretch = (a * a + b * b).max(c * c + dd * dd).sqrt().max(1e-12);
+                let extra = stretch.log10().ceil().clamp(0.0, 12.0) as usize;
+                (
+                    self.path_data(&(inv * p.path.clone()), self.decimals + extra),
+                    inv,
+                )
+            }
+        };
         if d.is_empty() {
             return;
         }
         let mut a = vec![("d", d)];
+        if let Some(f) = frame {
+            a.push(("transform", matrix(f)));
+        }
         match &p.fill {
             Some(f) => {
-                a.push(("fill", self.paint(&f.paint, prefix, defs)));
+                a.push(("fill", self.paint(&f.paint, to_local, prefix, defs)));
                 if f.opacity != 1.0 {
                     a.push(("fill-opacity", sig(f.opacity)));
                 }
@@ -334,7 +357,7 @@ impl Document {
             None => a.push(("fill", "none".into())),
         }
         if let Some(s) = &p.stroke {
-            self.stroke_attrs(s, prefix, defs, &mut a);
+            self.stroke_attrs(s, to_local, prefix, defs, &mut a);
             if p.stroke_first && p.fill.is_some() {
                 a.push(("paint-order", "stroke".into()));
             }
@@ -345,13 +368,22 @@ impl Document {
     fn stroke_attrs(
         &mut self,
         s: &Stroke,
+        to_local: Affine,
         prefix: &str,
         defs: &mut Xml,
         a: &mut Vec<(&'static str, String)>,
     ) {
-        a.push(("stroke", self.paint(&s.paint, prefix, defs)));
-        // Stroke widths keep two more decimals than coordinates: hairlines matter.
-        a.push(("stroke-width", fixed(s.width, self.decimals + 2)));
+        a.push(("stroke", self.paint(&s.paint, to_local, prefix, defs)));
+        // Stroke widths keep two more decimals than coordinates: hairlines matter. In a pen's
+        // own frame, units are not pixels: keep significant digits instead.
+        let len = |x: f64| {
+            if s.frame.is_some() {
+                sig(x)
+            } else {
+                fixed(x, self.decimals + 2)
+            }
+        };
+        a.push(("stroke-width", len(s.width)));
         if s.opacity != 1.0 {
             a.push(("stroke-opacity", sig(s.opacity)));
         }
@@ -370,21 +402,17 @@ impl Document {
             a.push(("stroke-miterlimit", sig(s.miter_limit)));
         }
         if !s.dashes.is_empty() {
-            let d: Vec<String> = s
-                .dashes
-                .iter()
-                .map(|x| fixed(*x, self.decimals + 2))
-                .collect();
+            let d: Vec<String> = s.dashes.iter().map(|x| len(*x)).collect();
             a.push(("stroke-dasharray", d.join(" ")));
             if s.dash_offset != 0.0 {
-                a.push(("stroke-dashoffset", fixed(s.dash_offset, self.decimals + 2)));
+                a.push(("stroke-dashoffset", len(s.dash_offset)));
             }
         }
     }
 
-    fn path_data(&self, path: &kurbo::BezPath) -> String {
+    fn path_data(&self, path: &kurbo::BezPath, decimals: usize) -> String {
         let mut d = String::new();
-        let pt = |q: kurbo::Point| format!("{} {}", self.num(q.x), self.num(q.y));
+        let pt = |q: kurbo::Point| format!("{} {}", fixed(q.x, decimals), fixed(q.y, decimals));
         for el in path.elements() {
             if !d.is_empty() {
                 d.push(' ');
@@ -402,19 +430,21 @@ impl Document {
         d
     }
 
-    fn paint(&mut self, paint: &Paint, prefix: &str, defs: &mut Xml) -> String {
+    /// A paint attribute value; gradients are written to `defs`, their geometry mapped by
+    /// `to_local` into the element's coordinates.
+    fn paint(&mut self, paint: &Paint, to_local: Affine, prefix: &str, defs: &mut Xml) -> String {
         match paint {
             Paint::Color(c) => hex(*c),
             Paint::Gradient(g) => {
                 let id = format!("{prefix}{}", self.next_id);
                 self.next_id += 1;
-                self.gradient(g, &id, defs);
+                self.gradient(g, to_local * g.transform, &id, defs);
                 format!("url(#{id})")
             }
         }
     }
 
-    fn gradient(&self, g: &Gradient, id: &str, defs: &mut Xml) {
+    fn gradient(&self, g: &Gradient, transform: Affine, id: &str, defs: &mut Xml) {
         let mut a = vec![
             ("id", id.to_string()),
             ("gradientUnits", "userSpaceOnUse".into()),
@@ -448,8 +478,8 @@ impl Document {
                 "radialGradient"
             }
         };
-        if g.transform != Affine::IDENTITY {
-            a.push(("gradientTransform", matrix(g.transform)));
+        if transform != Affine::IDENTITY {
+            a.push(("gradientTransform", matrix(transform)));
         }
         match g.spread {
             Spread::Pad => {}
