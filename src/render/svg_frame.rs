@@ -42,7 +42,7 @@ pub fn scene_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
     let mut defs = Xml::new();
     let mut body = Xml::new();
     doc.side(scene, "a", &mut defs, &mut body);
-    doc.finish(defs, body, None)
+    doc.finish(defs, body)
 }
 
 /// The frame at `t` blending the warped `source` and `target` scenes (see the module docs for
@@ -134,7 +134,7 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     body.close("g");
     body.close("g");
     body.close("g");
-    doc.finish(defs, body, Some(t))
+    doc.finish(defs, body)
 }
 
 /// A small quick-xml writer that remembers a write failure instead of returning it at every call.
@@ -237,7 +237,7 @@ impl Document {
         );
     }
 
-    fn finish(mut self, defs: Xml, body: Xml, _t: Option<f64>) -> Result<String> {
+    fn finish(mut self, defs: Xml, body: Xml) -> Result<String> {
         let defs_bytes = defs.w.into_inner();
         if !defs_bytes.is_empty() {
             self.root.open("defs", &[]);
