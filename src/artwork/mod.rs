@@ -25,10 +25,12 @@
 //! (skipped).
 
 mod bind;
+mod pair;
 mod scene;
 mod warp;
 
 pub use bind::{Binding, Location, PointLocator};
+pub use pair::ArtworkPair;
 pub use scene::flatten_tolerance;
 
 #[cfg(test)]

@@ -482,3 +482,25 @@ fn blend_shift_is_whole_pixels_at_odd_scales() {
         OUTLIER_FRACTION,
     );
 }
+
+#[test]
+fn bad_sizes_and_times_do_not_panic() {
+    let f = fixture();
+    let (s, g) = f.warped(0.5);
+    let zero = FrameOptions {
+        size: (0, 10),
+        ..opts()
+    };
+    assert!(frame_pixmap(&s, &g, 0.5, &zero).is_err());
+    assert!(frame_png(&s, &g, 0.5, &zero).is_err());
+    let o = opts();
+    // NaN is frame 0; out-of-range t clamps.
+    assert_eq!(
+        frame_svg(&s, &g, f64::NAN, &o).unwrap(),
+        scene_svg(&s, &o).unwrap()
+    );
+    assert_eq!(
+        frame_svg(&s, &g, 7.0, &o).unwrap(),
+        scene_svg(&g, &o).unwrap()
+    );
+}
