@@ -28,6 +28,7 @@
 //! [`compatible`] runs stages 1–4 for a pair of drawings; [`mesh`] holds the result and its
 //! [`mesh::sanity_check`]; [`quality`] measures frames.
 
+pub mod artwork;
 pub mod compatible;
 pub mod correspondence;
 pub mod drawing;
@@ -38,6 +39,7 @@ pub mod json;
 pub mod mapping;
 pub mod mesh;
 pub mod quality;
+pub mod render;
 pub mod rigid;
 pub mod tolerance;
 pub mod triangulation;

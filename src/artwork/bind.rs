@@ -1,0 +1,496 @@
+//! Binding artwork to a mesh: point location and barycentric coordinates.
+//!
+//! Every artwork point is expressed once as `(triangle, barycentric coordinates)` in the mesh the
+//! artwork belongs to (the source mesh for source artwork, the target mesh for target artwork);
+//! placing it in the mesh of a frame is then a weighted sum of three frame vertices (§3: the
+//! shapes are "transferred to the intermediate triangulations"). Points outside the mesh (artwork
+//! just outside the boundary, stroke overhangs) take the nearest triangle and its affine map:
+//! their barycentric coordinates extend that map and may be negative.
+
+use super::{Item, Scene};
+use crate::error::{Error, Result};
+use crate::geometry::{barycentric, orient2d, point_segment_distance, Point};
+use kurbo::{Affine, BezPath, ParamCurveArclen, PathEl, Shape};
+
+/// Where a point sits in a mesh: a triangle and barycentric coordinates in it (they sum to one;
+/// all non-negative when the point is inside the triangle).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Location {
+    /// Index into the mesh's triangle list.
+    pub triangle: u32,
+    /// Weights of the triangle's three vertices.
+    pub bary: [f64; 3],
+}
+
+impl Location {
+    /// The located point placed in a mesh with vertex positions `vertices`.
+    pub fn place(&self, triangles: &[[u32; 3]], vertices: &[Point]) -> Point {
+        let t = triangles[self.triangle as usize];
+        vertices[t[0] as usize] * self.bary[0]
+            + vertices[t[1] as usize] * self.bary[1]
+            + vertices[t[2] as usize] * self.bary[2]
+    }
+}
+
+/// A point locator over a triangle mesh: a uniform grid of triangle bounding boxes, with exact
+/// orientation tests for containment and a ring search for the nearest triangle.
+#[derive(Debug, Clone)]
+pub struct PointLocator<'a> {
+    points: &'a [Point],
+    triangles: &'a [[u32; 3]],
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Triangle indices per cell (row-major), ascending.
+    cells: Vec<Vec<u32>>,
+}
+
+impl<'a> PointLocator<'a> {
+    /// Builds the grid, about one cell per triangle. Degenerate (zero-area) triangles are left
+    /// out; an error is returned when no triangle is left or an index is out of range.
+    pub fn new(points: &'a [Point], triangles: &'a [[u32; 3]]) -> Result<Self> {
+        let n = points.len();
+        let mut lo = Point::splat(f64::INFINITY);
+        let mut hi = Point::splat(f64::NEG_INFINITY);
+        let mut usable = Vec::with_capacity(triangles.len());
+        for (i, t) in triangles.iter().enumerate() {
+            if t.iter().any(|&v| v as usize >= n) {
+                return Err(Error::internal(format!(
+                    "triangle {i} refers to a vertex out of range"
+                )));
+            }
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            if !(a.is_finite() && b.is_finite() && c.is_finite()) || orient2d(a, b, c) == 0.0 {
+                continue;
+            }
+            lo = lo.min(a).min(b).min(c);
+            hi = hi.max(a).max(b).max(c);
+            usable.push(i as u32);
+        }
+        if usable.is_empty() {
+            return Err(Error::internal(
+                "the mesh has no usable triangle to bind the artwork to",
+            ));
+        }
+        let ext = (hi - lo).max(Point::splat(f64::MIN_POSITIVE));
+        let cell = (ext.x * ext.y / usable.len() as f64)
+            .sqrt()
+            .max(ext.max_element() / 1024.0);
+        let nx = ((ext.x / cell).ceil() as usize).clamp(1, 1024);
+        let ny = ((ext.y / cell).ceil() as usize).clamp(1, 1024);
+        let mut cells = vec![Vec::new(); nx * ny];
+        let mut me = PointLocator {
+            points,
+            triangles,
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            cells: Vec::new(),
+        };
+        for &i in &usable {
+            let [a, b, c] = triangles[i as usize].map(|v| points[v as usize]);
+            let (x0, y0) = me.cell_of(a.min(b).min(c));
+            let (x1, y1) = me.cell_of(a.max(b).max(c));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    cells[y * nx + x].push(i);
+                }
+            }
+        }
+        me.cells = cells;
+        Ok(me)
+    }
+
+    /// The grid cell containing `p`, clamped to the grid.
+    fn cell_of(&self, p: Point) -> (usize, usize) {
+        let q = (p - self.origin) / self.cell;
+        let cx = if q.x.is_finite() {
+            q.x.floor().max(0.0) as usize
+        } else {
+            0
+        };
+        let cy = if q.y.is_finite() {
+            q.y.floor().max(0.0) as usize
+        } else {
+            0
+        };
+        (cx.min(self.nx - 1), cy.min(self.ny - 1))
+    }
+
+    /// The triangle containing `p` (boundary included; the lowest index wins on shared edges),
+    /// with barycentric coordinates clamped to be non-negative.
+    pub fn containing(&self, p: Point) -> Option<Location> {
+        let (cx, cy) = self.cell_of(p);
+        for &i in &self.cells[cy * self.nx + cx] {
+            let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
+            let s = orient2d(a, b, c).signum();
+            if orient2d(a, b, p) * s >= 0.0
+                && orient2d(b, c, p) * s >= 0.0
+                && orient2d(c, a, p) * s >= 0.0
+            {
+                let mut w = barycentric(p, a, b, c)?;
+                for x in &mut w {
+                    *x = x.max(0.0);
+                }
+                let sum: f64 = w.iter().sum();
+                return Some(Location {
+                    triangle: i,
+                    bary: w.map(|x| x / sum),
+                });
+            }
+        }
+        None
+    }
+
+    /// The triangle nearest to `p` (distance to its closed region; the lowest index wins ties).
+    fn nearest(&self, p: Point) -> u32 {
+        let (cx, cy) = self.cell_of(p);
+        let mut best: Option<(f64, u32)> = None;
+        let max_ring = self.nx.max(self.ny);
+        for r in 0..=max_ring {
+            let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(self.nx - 1));
+            let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(self.ny - 1));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
+                        continue; // inner cells were searched in earlier rings
+                    }
+                    for &i in &self.cells[y * self.nx + x] {
+                        let d = self.distance_to_triangle(p, i);
+                        if best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
+                            best = Some((d, i));
+                        }
+                    }
+                }
+            }
+            // Cells beyond ring r are at least r cells from p's cell.
+            if let Some((d, _)) = best {
+                if d < r as f64 * self.cell {
+                    break;
+                }
+            }
+        }
+        best.map(|(_, i)| i).unwrap_or(0)
+    }
+
+    fn distance_to_triangle(&self, p: Point, i: u32) -> f64 {
+        let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
+        point_segment_distance(p, a, b)
+            .0
+            .min(point_segment_distance(p, b, c).0)
+            .min(point_segment_distance(p, c, a).0)
+    }
+
+    /// Locates `p`: the containing triangle, or else the nearest one, whose affine map the point
+    /// then follows (barycentric coordinates extended outside the triangle).
+    pub fn locate(&self, p: Point) -> Location {
+        if let Some(l) = self.containing(p) {
+            return l;
+        }
+        let i = self.nearest(p);
+        let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
+        Location {
+            triangle: i,
+            // Usable triangles are non-degenerate, so this is Some.
+            bary: barycentric(p, a, b, c).unwrap_or([1.0, 0.0, 0.0]),
+        }
+    }
+}
+
+/// One subpath of a flattened path: a range of points and whether it is closed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Subpath {
+    pub(crate) start: usize,
+    pub(crate) len: usize,
+    pub(crate) closed: bool,
+}
+
+/// A path flattened and located once.
+#[derive(Debug, Clone)]
+pub(crate) struct BoundPath {
+    pub(crate) subpaths: Vec<Subpath>,
+    pub(crate) locations: Vec<Location>,
+    /// Where the path's paint geometry (gradients) is anchored: its bounding-box centre.
+    pub(crate) anchor: Location,
+}
+
+/// A path item bound to the mesh: its outline, and for a dashed stroke the dashes themselves.
+///
+/// Dashes are cut on the exact curve once and then carried by the mesh like any other
+/// geometry, so in a morph they travel with the artwork instead of sliding along the path, and
+/// flattening cannot shift them.
+#[derive(Debug, Clone)]
+pub(crate) struct BoundPathItem {
+    pub(crate) outline: BoundPath,
+    pub(crate) dashes: Option<BoundPath>,
+}
+
+/// What each path or image of the scene (depth first, paint order) is bound to.
+#[derive(Debug, Clone)]
+pub(crate) enum BoundItem {
+    Path(BoundPathItem),
+    /// An image, anchored at its centre.
+    Image(Location),
+    /// A group's clip path, one bound path per shape (comes before the group's children).
+    Clip(Vec<BoundPath>),
+}
+
+/// A scene bound to a mesh: computed once per artwork, then [`Binding::warp`] places it in the
+/// mesh of any frame (the precompute-then-apply split of DESIGN.md).
+#[derive(Debug, Clone)]
+pub struct Binding {
+    pub(crate) scene: Scene,
+    pub(crate) triangles: Vec<[u32; 3]>,
+    /// Rest positions of the mesh vertices the artwork was bound in.
+    pub(crate) rest: Vec<Point>,
+    /// Paths and images in depth-first paint order.
+    pub(crate) items: Vec<BoundItem>,
+}
+
+impl Binding {
+    /// Binds `scene` to the mesh `(mesh_vertices, triangles)` it was drawn on (the source mesh for
+    /// the source artwork, the target mesh for the target's). Curves are flattened at `tolerance`
+    /// user units (use [`super::flatten_tolerance`] for a quarter pixel at the output size).
+    pub fn new(
+        scene: &Scene,
+        mesh_vertices: &[Point],
+        triangles: &[[u32; 3]],
+        tolerance: f64,
+    ) -> Result<Binding> {
+        let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
+            tolerance
+        } else {
+            super::flatten_tolerance(scene.view_box, scene.size)
+        };
+        let locator = PointLocator::new(mesh_vertices, triangles)?;
+        let mut items = Vec::new();
+        bind_items(&scene.root.children, &locator, tolerance, &mut items);
+        Ok(Binding {
+            scene: scene.clone(),
+            triangles: triangles.to_vec(),
+            rest: mesh_vertices.to_vec(),
+            items,
+        })
+    }
+
+    /// The scene this binding carries.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Number of flattened artwork points bound to the mesh.
+    pub fn point_count(&self) -> usize {
+        self.items
+            .iter()
+            .map(|i| match i {
+                BoundItem::Path(p) => {
+                    p.outline.locations.len() + p.dashes.as_ref().map_or(0, |d| d.locations.len())
+                }
+                BoundItem::Image(_) => 1,
+                BoundItem::Clip(c) => c.iter().map(|p| p.locations.len()).sum(),
+            })
+            .sum()
+    }
+}
+
+fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<BoundItem>) {
+    for item in items {
+        match item {
+            Item::Group(g) => {
+                if let Some(c) = &g.clip {
+                    let shapes = c
+                        .shapes
+                        .iter()
+                        .map(|s| bind_path(&s.path, locator, tol))
+                        .collect();
+                    out.push(BoundItem::Clip(shapes));
+                }
+                bind_items(&g.children, locator, tol, out)
+            }
+            Item::Path(p) => {
+                let dashes = p
+                    .stroke
+                    .as_ref()
+                    .and_then(|st| cut_dashes(&p.path, st, &p.id))
+                    .map(|d| bind_path(&d, locator, tol));
+                out.push(BoundItem::Path(BoundPathItem {
+                    outline: bind_path(&p.path, locator, tol),
+                    dashes,
+                }));
+            }
+            Item::Image(img) => {
+                let c = img.transform * kurbo::Point::new(img.width / 2.0, img.height / 2.0);
+                out.push(BoundItem::Image(locator.locate(Point::new(c.x, c.y))));
+            }
+        }
+    }
+}
+
+/// Most dashes cut from one path; a pattern finer than this (a dotted hairline around a huge
+/// shape) is left to the renderer's own dashing.
+const MAX_DASHES: f64 = 20_000.0;
+
+/// The dashes of a dashed stroke as open subpaths in user space, cut on the exact curve in the
+/// space the pattern is measured in (user space, or the pen's frame). `None` for a solid
+/// stroke, an invalid pattern (SVG then draws it solid; usvg already drops those), or too many
+/// dashes.
+pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Option<BezPath> {
+    let d = &stroke.dashes;
+    let period: f64 = d.iter().sum();
+    if d.is_empty() || d.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || !(period > 0.0) {
+        return None;
+    }
+    let frame = stroke.frame.unwrap_or(Affine::IDENTITY);
+    let local = frame.inverse() * path.clone();
+    let length: f64 = local.segments().map(|s| s.arclen(1e-3 * period)).sum();
+    if !(length / period <= MAX_DASHES) {
+        log::warn!("element '{id}': dash pattern too fine to cut; left to the renderer");
+        return None;
+    }
+    let cut = BezPath::from_vec(kurbo::dash(local.iter(), stroke.dash_offset, d).collect());
+    Some(frame * cut)
+}
+
+/// Flattens `path` to polylines within `tol` and locates every point.
+fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
+    let mut points: Vec<Point> = Vec::new();
+    let mut subpaths: Vec<Subpath> = Vec::new();
+    kurbo::flatten(path, tol, |el| match el {
+        PathEl::MoveTo(p) => {
+            subpaths.push(Subpath {
+                start: points.len(),
+                len: 1,
+                closed: false,
+            });
+            points.push(Point::new(p.x, p.y));
+        }
+        PathEl::LineTo(p) => {
+            if let Some(s) = subpaths.last_mut() {
+                s.len += 1;
+                points.push(Point::new(p.x, p.y));
+            }
+        }
+        PathEl::ClosePath => {
+            if let Some(s) = subpaths.last_mut() {
+                s.closed = true;
+            }
+        }
+        // flatten only emits the three above.
+        PathEl::QuadTo(..) | PathEl::CurveTo(..) => {}
+    });
+    let bb = path.bounding_box().center();
+    BoundPath {
+        subpaths,
+        locations: points.iter().map(|&p| locator.locate(p)).collect(),
+        anchor: locator.locate(Point::new(bb.x, bb.y)),
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// An `nx` × `ny` grid of squares over `[0, w] × [0, h]`, two triangles each, counter-clockwise.
+    pub(crate) fn grid(nx: usize, ny: usize, w: f64, h: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+        let mut pts = Vec::new();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                pts.push(Point::new(
+                    w * i as f64 / nx as f64,
+                    h * j as f64 / ny as f64,
+                ));
+            }
+        }
+        let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        (pts, tris)
+    }
+
+    fn affine_map_of(
+        l: &Location,
+        tris: &[[u32; 3]],
+        rest: &[Point],
+        moved: &[Point],
+        p: Point,
+    ) -> Point {
+        // The affine map of triangle l.triangle, applied to p, computed independently.
+        let [a, b, c] = tris[l.triangle as usize].map(|v| rest[v as usize]);
+        let [a2, b2, c2] = tris[l.triangle as usize].map(|v| moved[v as usize]);
+        let m0 = glam::DMat2::from_cols(b - a, c - a);
+        let m1 = glam::DMat2::from_cols(b2 - a2, c2 - a2);
+        a2 + m1 * (m0.inverse() * (p - a))
+    }
+
+    #[test]
+    fn outside_points_take_the_nearest_triangle() {
+        let (pts, tris) = grid(4, 3, 40.0, 30.0);
+        let loc = PointLocator::new(&pts, &tris).unwrap();
+        let p = Point::new(43.0, 15.0);
+        let l = loc.locate(p);
+        let [a, b, c] = tris[l.triangle as usize].map(|v| pts[v as usize]);
+        // The nearest triangle touches the right edge x = 40 at y = 15.
+        assert!([a, b, c].iter().any(|q| q.x == 40.0));
+        assert!(l.bary.iter().any(|w| *w < 0.0));
+        let d = loc.distance_to_triangle(p, l.triangle);
+        assert!((d - 3.0).abs() < 1e-12);
+        // Far away, beyond the grid in both axes.
+        let far = loc.locate(Point::new(-100.0, -50.0));
+        let [a, _, _] = tris[far.triangle as usize].map(|v| pts[v as usize]);
+        assert_eq!(a, Point::ZERO);
+    }
+
+    proptest! {
+        #[test]
+        fn inside_points_reproduce_with_nonnegative_weights(x in 0.0..40.0f64, y in 0.0..30.0f64) {
+            let (pts, tris) = grid(5, 4, 40.0, 30.0);
+            let loc = PointLocator::new(&pts, &tris).unwrap();
+            let p = Point::new(x, y);
+            let l = loc.containing(p).expect("inside");
+            prop_assert!(l.bary.iter().all(|w| *w >= 0.0));
+            prop_assert!((l.bary.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            prop_assert!(l.place(&tris, &pts).distance(p) < 1e-12);
+        }
+
+        #[test]
+        fn any_point_follows_its_triangles_affine_map(x in -30.0..70.0f64, y in -30.0..60.0f64,
+                                                      ang in -1.0..1.0f64, bend in 0.0..0.3f64) {
+            let (pts, tris) = grid(5, 4, 40.0, 30.0);
+            let loc = PointLocator::new(&pts, &tris).unwrap();
+            let p = Point::new(x, y);
+            let l = loc.locate(p);
+            prop_assert!(l.place(&tris, &pts).distance(p) < 1e-9);
+            // Under a non-affine deformation the point moves with its triangle's affine map.
+            let moved: Vec<Point> = pts.iter().map(|q| {
+                let r = glam::DMat2::from_angle(ang + bend * q.x / 40.0);
+                r * *q + Point::new(5.0, -2.0)
+            }).collect();
+            let want = affine_map_of(&l, &tris, &pts, &moved, p);
+            prop_assert!(l.place(&tris, &moved).distance(want) < 1e-9);
+            // Brute force: no triangle is nearer than the chosen one.
+            let d = loc.distance_to_triangle(p, l.triangle);
+            let inside = l.bary.iter().all(|w| *w >= -1e-12);
+            for i in 0..tris.len() as u32 {
+                if !inside {
+                    prop_assert!(loc.distance_to_triangle(p, i) >= d - 1e-12);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_meshes_are_errors() {
+        let pts = vec![Point::ZERO, Point::X, Point::new(2.0, 0.0)];
+        assert!(PointLocator::new(&pts, &[[0, 1, 2]]).is_err());
+        assert!(PointLocator::new(&pts, &[[0, 1, 7]]).is_err());
+        assert!(PointLocator::new(&pts, &[]).is_err());
+    }
+}

@@ -1,0 +1,61 @@
+//! Rendering frames: the warped source and target artwork blended at t (end of §3), as a
+//! standalone SVG ([`frame_svg`]) or as pixels ([`frame_pixmap`], [`frame_png`]).
+//!
+//! Both outputs show the same thing: the premultiplied linear blend `(1 − t)·S_t + t·T_t` of the
+//! two warped renderings, composited over an optional background; at t = 0 and t = 1 exactly one
+//! drawing. The raster path renders each side with resvg (through the same SVG writer, parsed back
+//! with usvg, so the two outputs cannot drift apart) and blends pixels; the SVG path expresses the
+//! blend as a filter (see [`svg_frame`]).
+
+mod raster;
+pub mod svg_frame;
+
+pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba};
+pub use svg_frame::{frame_svg, scene_svg};
+
+use crate::artwork::{Rgba, Scene};
+use crate::geometry::Point;
+
+/// What a frame is rendered into: the part of user space shown, the output size, the background.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameOptions {
+    /// The user-space rectangle shown, `(min, max)`: normally the source drawing's viewBox.
+    pub view_box: (Point, Point),
+    /// Output size in pixels (width, height). Default: the drawing's own size.
+    pub size: (u32, u32),
+    /// Colour under the artwork. Default: none (transparent).
+    pub background: Option<Rgba>,
+}
+
+impl FrameOptions {
+    /// The drawing's own viewBox and size (rounded up to whole pixels, at least 1), no
+    /// background.
+    pub fn for_scene(scene: &Scene) -> Self {
+        let px = |x: f64| {
+            if x.is_finite() {
+                x.ceil().clamp(1.0, u32::MAX as f64) as u32
+            } else {
+                1
+            }
+        };
+        FrameOptions {
+            view_box: scene.view_box,
+            size: (px(scene.size.0), px(scene.size.1)),
+            background: None,
+        }
+    }
+
+    /// Output pixels per user unit (the finer axis): the scale flattening tolerances refer to.
+    pub fn scale(&self) -> f64 {
+        let d = self.view_box.1 - self.view_box.0;
+        (self.size.0 as f64 / d.x).max(self.size.1 as f64 / d.y)
+    }
+
+    /// The flattening tolerance, in user units, for a quarter-pixel error at this output size.
+    pub fn flatten_tolerance(&self) -> f64 {
+        crate::artwork::flatten_tolerance(self.view_box, (self.size.0 as f64, self.size.1 as f64))
+    }
+}
+
+#[cfg(test)]
+mod tests;
