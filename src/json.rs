@@ -1,7 +1,7 @@
 //! The JSON documents of DESIGN.md §3, for tooling and tests: the compatible meshes
 //! (`inspect -o m.json`) and one frame (`frame -o f.json`).
 //!
-//! Output is deterministic: the same input gives the same bytes (serde_json writes each f64 as
+//! Output is deterministic: the same input gives the same bytes (`serde_json` writes each f64 as
 //! its shortest round-trip decimal).
 
 use serde::Serialize;

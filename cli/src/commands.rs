@@ -5,8 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
+use crmorph::artwork::{ArtworkPair, Rgba, Scene};
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
+use crmorph::render::{frame_png, frame_svg, FrameOptions};
 use crmorph::rigid::{Interpolator, Method};
 
 use crate::output::{refuse_overwriting_inputs, write_atomic, Format};
@@ -14,7 +16,7 @@ use crate::progress::Progress;
 
 /// Which drawing is triangulated and mapped onto the other.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
-pub enum From {
+pub(crate) enum From {
     /// Triangulate the source, map it onto the target (default).
     #[default]
     Source,
@@ -24,7 +26,7 @@ pub enum From {
 
 /// Interpolation method (`--method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
-pub enum MethodArg {
+pub(crate) enum MethodArg {
     /// Disc-based rigidity-preserving interpolation with consistent rotations (§4.1; default).
     #[default]
     Disc,
@@ -46,29 +48,29 @@ impl MethodArg {
 
 /// Inputs and control conventions shared by every command.
 #[derive(Debug, Clone, Args)]
-pub struct Inputs {
+pub(crate) struct Inputs {
     /// The source SVG drawing.
-    pub source: PathBuf,
+    pub(crate) source: PathBuf,
     /// The target SVG drawing.
-    pub target: PathBuf,
+    pub(crate) target: PathBuf,
     /// Output file; its extension picks the format.
     #[arg(short, long)]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     /// Id of the boundary element.
     #[arg(long, default_value = "boundary")]
-    pub boundary_id: String,
+    pub(crate) boundary_id: String,
     /// Id prefix of feature curves.
     #[arg(long, default_value = "feature-")]
-    pub feature_prefix: String,
+    pub(crate) feature_prefix: String,
     /// Id (and prefix) of skeleton polylines.
     #[arg(long, default_value = "skeleton")]
-    pub skeleton_id: String,
+    pub(crate) skeleton_id: String,
     /// Vertex density multiplier: 2 gives twice as many vertices per unit length.
     #[arg(long, default_value_t = 1.0, value_parser = positive_f64)]
-    pub density: f64,
+    pub(crate) density: f64,
     /// Which drawing to triangulate and map onto the other.
     #[arg(long, value_enum, default_value_t = From::Source)]
-    pub from: From,
+    pub(crate) from: From,
 }
 
 fn positive_f64(s: &str) -> std::result::Result<f64, String> {
@@ -91,40 +93,71 @@ fn unit_f64(s: &str) -> std::result::Result<f64, String> {
 
 /// `crmorph inspect`: the compatible triangulations.
 #[derive(Debug, Clone, Args)]
-pub struct InspectArgs {
+pub(crate) struct InspectArgs {
     #[command(flatten)]
-    pub inputs: Inputs,
+    pub(crate) inputs: Inputs,
 }
 
 /// `crmorph frame`: one frame of the morph.
 #[derive(Debug, Clone, Args)]
-pub struct FrameArgs {
+pub(crate) struct FrameArgs {
     #[command(flatten)]
-    pub inputs: Inputs,
+    pub(crate) inputs: Inputs,
     /// Time of the frame, from 0 (source) to 1 (target).
     #[arg(long, value_parser = unit_f64)]
-    pub at: f64,
+    pub(crate) at: f64,
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
-    pub method: MethodArg,
+    pub(crate) method: MethodArg,
+    /// Output size in pixels for .png and .svg, as WxH (default: the drawing's own size).
+    #[arg(long, value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// Background colour under the artwork, any SVG colour (default: transparent).
+    #[arg(long, value_parser = parse_colour)]
+    pub(crate) background: Option<Rgba>,
+}
+
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT, e.g. 512x512"))?;
+    let px = |v: &str| match v.trim().parse::<u32>() {
+        Ok(n) if (1..=16384).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{s}': each side must be a whole number of pixels from 1 to 16384"
+        )),
+    };
+    Ok((px(w)?, px(h)?))
+}
+
+fn parse_colour(s: &str) -> std::result::Result<Rgba, String> {
+    let c: svgtypes::Color = s
+        .parse()
+        .map_err(|_| format!("'{s}' is not a colour (try #ffffff, white or rgb(255,255,255))"))?;
+    Ok(Rgba {
+        r: c.red,
+        g: c.green,
+        b: c.blue,
+        a: c.alpha,
+    })
 }
 
 /// `crmorph morph`: the whole morph.
 #[derive(Debug, Clone, Args)]
-pub struct MorphArgs {
+pub(crate) struct MorphArgs {
     #[command(flatten)]
-    pub inputs: Inputs,
+    pub(crate) inputs: Inputs,
     /// Number of frames, the first at t = 0 and the last at t = 1.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=10000))]
-    pub frames: u32,
+    pub(crate) frames: u32,
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
-    pub method: MethodArg,
+    pub(crate) method: MethodArg,
 }
 
 /// A usage problem found after parsing (exit status 2).
 #[derive(Debug)]
-pub struct Usage(pub String);
+pub(crate) struct Usage(pub String);
 
 impl std::fmt::Display for Usage {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -167,7 +200,7 @@ fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
     Ok((s, t))
 }
 
-fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Compatible> {
+fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing, Compatible)> {
     refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
     progress.stage("reading drawings");
     let (s, t) = read_both(inputs)?;
@@ -175,13 +208,14 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Compatible> {
     opts.from_target = inputs.from == From::Target;
     opts.density = inputs.density;
     progress.stage("compatible triangulation");
-    Ok(build(&s, &t, &opts)?)
+    let c = build(&s, &t, &opts)?;
+    Ok((s, t, c))
 }
 
 /// Runs `inspect`.
-pub fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
+pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
     let fmt = output_format(&a.inputs.output, &[Format::Svg, Format::Json], "inspect")?;
-    let c = compatible(&a.inputs, progress)?;
+    let (_, _, c) = compatible(&a.inputs, progress)?;
     let bytes = match fmt {
         Format::Json => crmorph::json::meshes_json(&c.meshes),
         _ => crmorph::inspect::inspect_svg(&c),
@@ -190,23 +224,49 @@ pub fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
 }
 
 /// Runs `frame`.
-pub fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
-    output_format(&a.inputs.output, &[Format::Json], "frame")?;
-    let c = compatible(&a.inputs, progress)?;
+pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
+    let fmt = output_format(
+        &a.inputs.output,
+        &[Format::Json, Format::Svg, Format::Png],
+        "frame",
+    )?;
+    let (s, t, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
     let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;
     let v = interp.at_vec(a.at);
-    write_atomic(
-        &a.inputs.output,
-        crmorph::json::frame_json(m, a.at, &v).as_bytes(),
-    )
+    let bytes = match fmt {
+        Format::Json => crmorph::json::frame_json(m, a.at, &v).into_bytes(),
+        _ => {
+            progress.stage("rendering");
+            let dir = |d: &Drawing| {
+                std::path::Path::new(&d.file)
+                    .parent()
+                    .map(|p| p.to_path_buf())
+            };
+            let guides = "controls";
+            let ss = Scene::from_svg_in(&s.file, &s.svg, guides, dir(&s).as_deref())?;
+            let ts = Scene::from_svg_in(&t.file, &t.svg, guides, dir(&t).as_deref())?;
+            let mut opts = FrameOptions::for_scene(&ss);
+            if let Some((w, h)) = a.size {
+                opts.size = (w, h);
+            }
+            opts.background = a.background;
+            let pair = ArtworkPair::new(&ss, &ts, m, opts.flatten_tolerance())?;
+            let (sw, tw) = pair.at(&v)?;
+            match fmt {
+                Format::Svg => frame_svg(&sw, &tw, a.at, &opts)?.into_bytes(),
+                _ => frame_png(&sw, &tw, a.at, &opts)?,
+            }
+        }
+    };
+    write_atomic(&a.inputs.output, &bytes)
 }
 
 /// Runs `morph`.
-pub fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
+pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     output_format(&a.inputs.output, &[Format::Json], "morph")?;
-    let c = compatible(&a.inputs, progress)?;
+    let (_, _, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
     let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;

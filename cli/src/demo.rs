@@ -3,8 +3,10 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use crmorph::artwork::{ArtworkPair, Rgba, Scene};
 use crmorph::compatible::{build, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
+use crmorph::render::{frame_png, frame_svg, FrameOptions};
 use crmorph::rigid::{Interpolator, Method};
 
 use crate::output::write_atomic;
@@ -13,9 +15,11 @@ use crate::progress::Progress;
 const SOURCE: &str = include_str!("../../fixtures/gourd/source.svg");
 const TARGET: &str = include_str!("../../fixtures/gourd/target.svg");
 const FRAMES: usize = 60;
+/// Rendered frames written as PNG (t = i / (RENDERED − 1)).
+const RENDERED: usize = 9;
 
 /// Runs the demo into `dir`, and returns a summary for stdout.
-pub fn run(dir: &Path, progress: &Progress) -> Result<String> {
+pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
     let opts = ReadOptions::default();
@@ -51,6 +55,34 @@ pub fn run(dir: &Path, progress: &Progress) -> Result<String> {
         &dir.join("frames.json"),
         format!("{{\"frames\":[{}]}}", docs.join(",")).as_bytes(),
     )?;
+    progress.stage("rendering frames");
+    let ss = Scene::from_svg("gourd/source.svg", SOURCE, "controls")?;
+    let ts = Scene::from_svg("gourd/target.svg", TARGET, "controls")?;
+    let mut opts = FrameOptions::for_scene(&ss);
+    opts.background = Some(Rgba {
+        r: 255,
+        g: 255,
+        b: 255,
+        a: 255,
+    });
+    let pair = ArtworkPair::new(&ss, &ts, m, opts.flatten_tolerance())?;
+    let frames_dir = dir.join("frames");
+    std::fs::create_dir_all(&frames_dir)
+        .with_context(|| format!("{}: cannot create the folder", frames_dir.display()))?;
+    for i in 0..RENDERED {
+        let t = i as f64 / (RENDERED - 1) as f64;
+        let (sw, tw) = pair.at(&interp.at_vec(t))?;
+        write_atomic(
+            &frames_dir.join(format!("frame_{i:03}.png")),
+            &frame_png(&sw, &tw, t, &opts)?,
+        )?;
+        if i == RENDERED / 2 {
+            write_atomic(
+                &dir.join("middle.svg"),
+                frame_svg(&sw, &tw, t, &opts)?.as_bytes(),
+            )?;
+        }
+    }
     let inverted: usize = frames
         .iter()
         .map(|f| crmorph::mesh::count_inverted(&m.triangles, f))
@@ -59,7 +91,7 @@ pub fn run(dir: &Path, progress: &Progress) -> Result<String> {
         "crmorph demo: gourd in the air -> on the ground\n\
          compatible triangulation: {} vertices, {} triangles, {} curves, {} mapping steps\n\
          {} frames interpolated, {} inverted triangles\n\
-         wrote {}/{{source.svg, target.svg, inspect.svg, meshes.json, frames.json}}",
+         wrote {}/{{source.svg, target.svg, inspect.svg, meshes.json, frames.json, middle.svg, frames/frame_000..008.png}}",
         m.source.len(),
         m.triangles.len(),
         m.curves.len(),

@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 
 /// What kind of output a path asks for, by its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
+pub(crate) enum Format {
     /// `.svg`
     Svg,
     /// `.json`
@@ -23,7 +23,7 @@ pub enum Format {
 
 impl Format {
     /// The format named by `path`'s extension, if crmorph knows it.
-    pub fn of(path: &Path) -> Option<Format> {
+    pub(crate) fn of(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
             "svg" => Format::Svg,
@@ -44,7 +44,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 }
 
 /// Refuses an output path that is one of the inputs.
-pub fn refuse_overwriting_inputs(out: &Path, inputs: &[&Path]) -> Result<()> {
+pub(crate) fn refuse_overwriting_inputs(out: &Path, inputs: &[&Path]) -> Result<()> {
     for i in inputs {
         if same_file(out, i) {
             bail!("{}: refusing to overwrite an input file", out.display());
@@ -54,7 +54,7 @@ pub fn refuse_overwriting_inputs(out: &Path, inputs: &[&Path]) -> Result<()> {
 }
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, then a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir: PathBuf = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),

@@ -5,13 +5,13 @@ use std::io::IsTerminal;
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// A stage-by-stage spinner (hidden when not on a terminal or when quiet).
-pub struct Progress {
+pub(crate) struct Progress {
     bar: ProgressBar,
 }
 
 impl Progress {
     /// A spinner that is visible only if `quiet` is off and stderr is a terminal.
-    pub fn new(quiet: bool) -> Self {
+    pub(crate) fn new(quiet: bool) -> Self {
         let bar = if quiet || !std::io::stderr().is_terminal() {
             ProgressBar::hidden()
         } else {
@@ -27,12 +27,12 @@ impl Progress {
     }
 
     /// Names the stage now running.
-    pub fn stage(&self, name: &str) {
+    pub(crate) fn stage(&self, name: &str) {
         self.bar.set_message(name.to_string());
     }
 
     /// Removes the spinner.
-    pub fn finish(&self) {
+    pub(crate) fn finish(&self) {
         self.bar.finish_and_clear();
     }
 }

@@ -28,7 +28,7 @@ fn stderr(o: &Output) -> String {
 #[test]
 fn inspect_writes_svg_and_json() {
     let dir = tempfile::tempdir().unwrap();
-    let (s, t) = (fixture("u-to-s/source.svg"), fixture("u-to-s/target.svg"));
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
     let svg = dir.path().join("tri.svg");
     let o = run(&[
         os("inspect"),
@@ -62,10 +62,7 @@ fn inspect_writes_svg_and_json() {
 #[test]
 fn frame_writes_the_mesh_at_t_for_each_method() {
     let dir = tempfile::tempdir().unwrap();
-    let (s, t) = (
-        fixture("leaf-to-butterfly/source.svg"),
-        fixture("leaf-to-butterfly/target.svg"),
-    );
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
     for method in ["disc", "triangle", "linear"] {
         let out = dir.path().join(format!("{method}.json"));
         let o = run(&[
@@ -91,7 +88,7 @@ fn bad_usage_exits_2() {
     let o = run(&[os("inspect")]);
     assert_eq!(o.status.code(), Some(2));
     let dir = tempfile::tempdir().unwrap();
-    let (s, t) = (fixture("u-to-s/source.svg"), fixture("u-to-s/target.svg"));
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
     let o = run(&[
         os("inspect"),
         os(&s),
@@ -154,12 +151,12 @@ fn bad_input_exits_1_with_one_line_and_no_output() {
 fn an_input_is_never_overwritten() {
     let dir = tempfile::tempdir().unwrap();
     let s = dir.path().join("s.svg");
-    std::fs::copy(fixture("u-to-s/source.svg"), &s).unwrap();
+    std::fs::copy(fixture("gourd/source.svg"), &s).unwrap();
     let before = std::fs::read(&s).unwrap();
     let o = run(&[
         os("inspect"),
         os(&s),
-        os(&fixture("u-to-s/target.svg")),
+        os(&fixture("gourd/target.svg")),
         os("-o"),
         os(&s),
     ]);

@@ -339,13 +339,17 @@ const MAX_DASHES: f64 = 20_000.0;
 pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Option<BezPath> {
     let d = &stroke.dashes;
     let period: f64 = d.iter().sum();
-    if d.is_empty() || d.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || !(period > 0.0) {
+    if d.is_empty()
+        || d.iter().any(|x| !x.is_finite() || *x < 0.0)
+        || period.is_nan()
+        || period <= 0.0
+    {
         return None;
     }
     let frame = stroke.frame.unwrap_or(Affine::IDENTITY);
     let local = frame.inverse() * path.clone();
     let length: f64 = local.segments().map(|s| s.arclen(1e-3 * period)).sum();
-    if !(length / period <= MAX_DASHES) {
+    if (length / period).is_nan() || length / period > MAX_DASHES {
         log::warn!("element '{id}': dash pattern too fine to cut; left to the renderer");
         return None;
     }

@@ -244,13 +244,16 @@ fn drawing_size(path: &BezPath) -> f64 {
     2.0 * pts.iter().map(|p| p.distance(c)).fold(0.0, f64::max)
 }
 
+/// What [`read_controls`] finds: the controls, their tolerances and the root's viewBox.
+pub(crate) type ReadControls = (Controls, Tolerances, Option<(Point, Point)>);
+
 /// Reads and validates the control geometry of a parsed document.
 pub(crate) fn read_controls(
     root: &Element,
     file: &str,
     ids: &ControlIds,
     density: f64,
-) -> Result<(Controls, Tolerances, Option<(Point, Point)>)> {
+) -> Result<ReadControls> {
     let vb = view_box(root, file)?;
     let mut found = Vec::new();
     walk(root, Affine::IDENTITY, ids, file, &mut found)?;
@@ -288,7 +291,7 @@ pub(crate) fn read_controls(
         Some(b) => drawing_size(&b.path),
         None => lo.distance(hi),
     };
-    if !(diagonal >= MIN_DIAGONAL) {
+    if diagonal.is_nan() || diagonal < MIN_DIAGONAL {
         let who = boundary
             .map(|b| b.id.clone())
             .unwrap_or_else(|| "viewBox".into());

@@ -33,20 +33,6 @@ impl Element {
     pub(crate) fn id(&self) -> Option<&str> {
         self.attr("id")
     }
-
-    /// A presentation property, looked up in the `style` attribute first, then as an attribute.
-    pub(crate) fn property(&self, name: &str) -> Option<String> {
-        if let Some(style) = self.attr("style") {
-            for decl in style.split(';') {
-                if let Some((k, v)) = decl.split_once(':') {
-                    if k.trim() == name {
-                        return Some(v.trim().to_string());
-                    }
-                }
-            }
-        }
-        self.attr(name).map(|v| v.trim().to_string())
-    }
 }
 
 /// Why a document could not be read as XML.
@@ -153,16 +139,15 @@ pub(crate) fn parse(text: &str) -> Result<Element, XmlProblem> {
                     None => root = Some(el),
                 }
             }
-            Event::Text(t) => {
+            Event::Text(t)
                 if stack.is_empty()
                     && root.is_none()
                     && !t
                         .xml_content(quick_xml::XmlVersion::Implicit1_0)
                         .trim()
-                        .is_empty()
-                {
-                    return Err(XmlProblem::NotSvg("text".into()));
-                }
+                        .is_empty() =>
+            {
+                return Err(XmlProblem::NotSvg("text".into()));
             }
             Event::Eof => break,
             _ => {}
@@ -194,7 +179,6 @@ mod tests {
         let r = parse(r#"<?xml version="1.0"?><svg xmlns="http://www.w3.org/2000/svg"><g id="a" style="display: none ; fill:red"><path id="p" d="M0 0"/></g></svg>"#).unwrap();
         assert_eq!(r.name, "svg");
         assert_eq!(r.children[0].id(), Some("a"));
-        assert_eq!(r.children[0].property("display").as_deref(), Some("none"));
         assert_eq!(r.children[0].children[0].attr("d"), Some("M0 0"));
     }
 

@@ -110,12 +110,16 @@ pub(crate) fn nearest_branch(alpha: f64, reference: f64) -> f64 {
     }
 }
 
+/// A list of index pairs.
+#[cfg(test)]
+pub(crate) type EdgeList = Vec<(u32, u32)>;
+
 /// The paper's literal graph (§4.1.1) for discs `discs`: one node per directed local
 /// transformation `(i, j)` with `j ∈ P_i`, numbered in the order of `discs`, and a link between
 /// `(i₁, j₁)` and `(i₂, j₂)` when `p_j₁ ∈ P_j₂` or `p_j₂ ∈ P_j₁`. Large (about 36 links per
 /// transformation on a triangle mesh); used by tests to validate the reduced graph.
 #[cfg(test)]
-pub(crate) fn full_disc_graph(discs: &[Vec<u32>]) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+pub(crate) fn full_disc_graph(discs: &[Vec<u32>]) -> (EdgeList, EdgeList) {
     let n = discs.len();
     let mut nodes = Vec::new();
     let mut by_end: Vec<Vec<u32>> = vec![Vec::new(); n];

@@ -177,7 +177,8 @@ fn half_turn_keeps_area_where_linear_collapses() {
 
 #[test]
 fn reduced_rotation_graph_matches_the_full_graph() {
-    let cases: Vec<(Vec<Point>, Vec<[u32; 3]>, Vec<Point>)> = vec![
+    type Case = (Vec<Point>, Vec<[u32; 3]>, Vec<Point>);
+    let cases: Vec<Case> = vec![
         {
             let (s, t) = grid(7, 4, 1.0);
             let g = bend(&s, 6.0, 1.6, PI - 0.8); // angles straddle ±π

@@ -6,12 +6,12 @@ use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
 
 /// The repository's fixtures folder.
-pub fn fixtures() -> PathBuf {
+pub(crate) fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures")
 }
 
 /// Every fixture pair: folders of fixtures/ holding source.svg and target.svg.
-pub fn pairs() -> Vec<(String, PathBuf, PathBuf)> {
+pub(crate) fn pairs() -> Vec<(String, PathBuf, PathBuf)> {
     let mut v = Vec::new();
     for e in std::fs::read_dir(fixtures()).unwrap() {
         let p = e.unwrap().path();
@@ -29,13 +29,29 @@ pub fn pairs() -> Vec<(String, PathBuf, PathBuf)> {
     v
 }
 
+/// Fixture pairs and directions (`from_target`) that the composite mapping cannot yet carry
+/// flip-free: `build` must fail on them with an input error naming curves (never a panic, never
+/// a folded mesh). A pair that starts mapping fails the test until it is taken off this list.
+pub(crate) const KNOWN_MAPPING_FAILURES: &[(&str, bool)] = &[
+    ("dancer", false),
+    ("dancer", true),
+    ("leaf-to-butterfly", false),
+    ("u-to-s", false),
+    ("u-to-s", true),
+];
+
+/// Whether `name` in direction `from_target` is a known mapping failure.
+pub(crate) fn known_failure(name: &str, from_target: bool) -> bool {
+    KNOWN_MAPPING_FAILURES.contains(&(name, from_target))
+}
+
 /// Reads a drawing with default options, panicking with the error message on failure.
-pub fn open(p: &Path) -> Drawing {
+pub(crate) fn open(p: &Path) -> Drawing {
     Drawing::open(p, &ReadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Builds the compatible triangulation of a pair.
-pub fn compatible(s: &Drawing, t: &Drawing, from_target: bool) -> Compatible {
+pub(crate) fn compatible(s: &Drawing, t: &Drawing, from_target: bool) -> Compatible {
     let mut o = MorphOptions::default();
     o.from_target = from_target;
     build(s, t, &o).unwrap_or_else(|e| panic!("{e}"))
