@@ -61,5 +61,65 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// The compatible meshes of every fixture pair that maps (source direction first, else from the
+/// target), built once.
+fn fixture_meshes() -> Vec<(String, crmorph::CompatibleMeshes)> {
+    use crmorph::compatible::{build, MorphOptions};
+    use crmorph::drawing::{Drawing, ReadOptions};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    let mut dirs: Vec<_> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    dirs.sort();
+    let mut out = Vec::new();
+    for d in dirs {
+        let (s, t) = (d.join("source.svg"), d.join("target.svg"));
+        if !(s.exists() && t.exists()) {
+            continue;
+        }
+        let o = ReadOptions::default();
+        let (s, t) = (
+            Drawing::open(&s, &o).unwrap(),
+            Drawing::open(&t, &o).unwrap(),
+        );
+        let name = d.file_name().unwrap().to_string_lossy().into_owned();
+        for from_target in [false, true] {
+            let mut opts = MorphOptions::default();
+            opts.from_target = from_target;
+            if let Ok(c) = build(&s, &t, &opts) {
+                let label = if from_target {
+                    format!("{name}(from-target)")
+                } else {
+                    name.clone()
+                };
+                out.push((label, c.meshes));
+                break;
+            }
+        }
+    }
+    out
+}
+
+fn fixtures(c: &mut Criterion) {
+    let mut g = c.benchmark_group("rigid-fixtures");
+    for (name, m) in fixture_meshes() {
+        eprintln!("fixture {name}: {} vertices", m.source.len());
+        g.bench_function(format!("setup/disc/{name}"), |b| {
+            b.iter(|| {
+                Interpolator::new(Method::Disc, black_box(&m.source), &m.target, &m.triangles)
+                    .unwrap()
+            })
+        });
+        let it = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+        let mut ws = it.workspace();
+        let mut out = vec![Point::ZERO; m.source.len()];
+        g.bench_function(format!("frame/disc/{name}"), |b| {
+            b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, fixtures);
 criterion_main!(benches);

@@ -37,16 +37,28 @@ fn compatible_triangulation(c: &mut Criterion) {
     let mut g = c.benchmark_group("compatible_triangulation");
     g.sample_size(20);
     for (name, s, t) in fixtures() {
-        let opts = MorphOptions::default();
-        let r = build(&s, &t, &opts).unwrap();
-        eprintln!(
-            "fixture {name}: {} feature curves, {} mesh vertices, {} triangles, {} mapping steps",
-            r.meshes.curves.len() - 1,
-            r.meshes.source.len(),
-            r.meshes.triangles.len(),
-            r.stats.steps
-        );
-        g.bench_function(&name, |b| b.iter(|| build(&s, &t, &opts).unwrap()));
+        for from_target in [false, true] {
+            let mut opts = MorphOptions::default();
+            opts.from_target = from_target;
+            let label = if from_target {
+                format!("{name}(from-target)")
+            } else {
+                name.clone()
+            };
+            match build(&s, &t, &opts) {
+                Ok(r) => {
+                    eprintln!(
+                        "fixture {label}: {} feature curves, {} mesh vertices, {} triangles, {} mapping steps",
+                        r.meshes.curves.len() - 1,
+                        r.meshes.source.len(),
+                        r.meshes.triangles.len(),
+                        r.stats.steps
+                    );
+                    g.bench_function(&label, |b| b.iter(|| build(&s, &t, &opts).unwrap()));
+                }
+                Err(e) => eprintln!("fixture {label}: does not map ({e})"),
+            }
+        }
     }
     g.finish();
 }

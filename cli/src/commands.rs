@@ -109,7 +109,7 @@ pub(crate) struct FrameArgs {
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
     pub(crate) method: MethodArg,
-    /// Output size in pixels for .png and .svg, as WxH (default: the drawing's own size).
+    /// Output size in pixels for .png and .svg, e.g. 512x512 (default: the drawing's own size).
     #[arg(long, value_parser = parse_size)]
     pub(crate) size: Option<(u32, u32)>,
     /// Background colour under the artwork, any SVG colour (default: transparent).
