@@ -233,7 +233,14 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
     let (s, t, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
-    let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;
+    let interp =
+        Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
+            e.in_file(format!(
+                "{} → {}",
+                a.inputs.source.display(),
+                a.inputs.target.display()
+            ))
+        })?;
     let v = interp.at_vec(a.at);
     let bytes = match fmt {
         Format::Json => crmorph::json::frame_json(m, a.at, &v).into_bytes(),
@@ -269,7 +276,14 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     let (_, _, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
-    let interp = Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles)?;
+    let interp =
+        Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
+            e.in_file(format!(
+                "{} → {}",
+                a.inputs.source.display(),
+                a.inputs.target.display()
+            ))
+        })?;
     let n = a.frames as usize;
     let ts: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
     let frames = interp.frames(&ts);

@@ -100,7 +100,18 @@ impl TriangleRigid {
         let links = adjacent_triangles(triangles);
         let thetas: Vec<f64> = raw.iter().map(|r| r.1).collect();
         let thetas = consistent_angles(&thetas, &links);
-        let system = builder.factor()?;
+        // Alexa's energy weighs each triangle by the inverse of its shape, so near-degenerate
+        // triangles make the system numerically singular: the sensitivity the paper's Fig.13
+        // shows. Say so instead of reporting an internal failure.
+        let system = builder.factor().map_err(|e| match e {
+            Error::Internal(m) if m.contains("not positive definite") => Error::input(
+                "<meshes>",
+                "the triangle-based interpolation cannot handle this mesh: near-degenerate \
+                 triangles make its system numerically singular",
+            )
+            .with_hint("use --method disc, which does not depend on triangle shapes"),
+            other => other,
+        })?;
         let terms = triangles
             .iter()
             .zip(raw)

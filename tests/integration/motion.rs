@@ -51,3 +51,30 @@ fn frames_are_exact_at_the_ends_and_never_inverted() {
         );
     }
 }
+
+#[test]
+fn a_half_turn_keeps_its_area_where_linear_interpolation_collapses() {
+    // leaf → butterfly turns by about 180°; it maps when triangulated from the butterfly.
+    use crmorph::quality::area;
+    let d = crate::common::fixtures().join("leaf-to-butterfly");
+    let (s, t) = (open(&d.join("source.svg")), open(&d.join("target.svg")));
+    let c = compatible(&s, &t, true);
+    let m = &c.meshes;
+    let (a0, a1) = (area(&m.triangles, &m.source), area(&m.triangles, &m.target));
+    let disc = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+    let linear = Interpolator::new(Method::Linear, &m.source, &m.target, &m.triangles).unwrap();
+    for k in 0..=20 {
+        let t = k as f64 / 20.0;
+        let blend = (1.0 - t) * a0 + t * a1;
+        let r = area(&m.triangles, &disc.at_vec(t)) / blend;
+        assert!(
+            (r - 1.0).abs() <= 0.10,
+            "disc area at t={t} is {r:.3} of the blend"
+        );
+    }
+    let r = area(&m.triangles, &linear.at_vec(0.5)) / (0.5 * (a0 + a1));
+    assert!(
+        r < 0.1,
+        "linear interpolation should collapse the half turn, area ratio {r:.3}"
+    );
+}
