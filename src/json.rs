@@ -70,6 +70,17 @@ pub fn frame_json(m: &CompatibleMeshes, t: f64, vertices: &[Point]) -> String {
     serde_json::to_string(&doc).expect("plain data serializes")
 }
 
+/// Every frame of a sequence as JSON: `{"frames": [frame, …]}`, each frame as in
+/// [`frame_json`], `frames[k]` being the mesh at `ts[k]`.
+pub fn frames_json(m: &CompatibleMeshes, ts: &[f64], frames: &[Vec<Point>]) -> String {
+    let docs: Vec<String> = ts
+        .iter()
+        .zip(frames)
+        .map(|(t, v)| frame_json(m, *t, v))
+        .collect();
+    format!("{{\"frames\":[{}]}}", docs.join(","))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -212,6 +212,22 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing,
     Ok((s, t, c))
 }
 
+/// The interpolator of `method` for the meshes, its errors naming the two inputs.
+fn interpolator(
+    inputs: &Inputs,
+    method: MethodArg,
+    m: &crmorph::CompatibleMeshes,
+) -> Result<Interpolator> {
+    Interpolator::new(method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
+        e.in_file(format!(
+            "{} → {}",
+            inputs.source.display(),
+            inputs.target.display()
+        ))
+        .into()
+    })
+}
+
 /// Runs `inspect`.
 pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
     let fmt = output_format(&a.inputs.output, &[Format::Svg, Format::Json], "inspect")?;
@@ -233,14 +249,7 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
     let (s, t, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
-    let interp =
-        Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
-            e.in_file(format!(
-                "{} → {}",
-                a.inputs.source.display(),
-                a.inputs.target.display()
-            ))
-        })?;
+    let interp = interpolator(&a.inputs, a.method, m)?;
     let v = interp.at_vec(a.at);
     let bytes = match fmt {
         Format::Json => crmorph::json::frame_json(m, a.at, &v).into_bytes(),
@@ -276,23 +285,11 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     let (_, _, c) = compatible(&a.inputs, progress)?;
     progress.stage("interpolation");
     let m = &c.meshes;
-    let interp =
-        Interpolator::new(a.method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
-            e.in_file(format!(
-                "{} → {}",
-                a.inputs.source.display(),
-                a.inputs.target.display()
-            ))
-        })?;
+    let interp = interpolator(&a.inputs, a.method, m)?;
     let n = a.frames as usize;
     let ts: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
     let frames = interp.frames(&ts);
-    let docs: Vec<String> = ts
-        .iter()
-        .zip(&frames)
-        .map(|(t, v)| crmorph::json::frame_json(m, *t, v))
-        .collect();
-    let json = format!("{{\"frames\":[{}]}}", docs.join(","));
+    let json = crmorph::json::frames_json(m, &ts, &frames);
     if json.len() > 1 << 31 {
         bail!(
             "{}: the output would be larger than 2 GiB; use fewer frames",

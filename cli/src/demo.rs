@@ -35,11 +35,6 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
         .map(|i| i as f64 / (FRAMES - 1) as f64)
         .collect();
     let frames = interp.frames(&ts);
-    let docs: Vec<String> = ts
-        .iter()
-        .zip(&frames)
-        .map(|(t, v)| crmorph::json::frame_json(m, *t, v))
-        .collect();
     progress.stage("writing");
     write_atomic(&dir.join("source.svg"), SOURCE.as_bytes())?;
     write_atomic(&dir.join("target.svg"), TARGET.as_bytes())?;
@@ -53,7 +48,7 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
     )?;
     write_atomic(
         &dir.join("frames.json"),
-        format!("{{\"frames\":[{}]}}", docs.join(",")).as_bytes(),
+        crmorph::json::frames_json(m, &ts, &frames).as_bytes(),
     )?;
     progress.stage("rendering frames");
     let ss = Scene::from_svg("gourd/source.svg", SOURCE, "controls")?;

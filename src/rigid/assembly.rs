@@ -356,6 +356,13 @@ pub(crate) fn component_centroids(comp: &[u32], count: usize, points: &[Point]) 
         .collect()
 }
 
+/// `out[i] = (1 − t)·a[i] + t·b[i]`: the translation rule's straight-line centroids at `t`.
+pub(crate) fn lerp_into(out: &mut [Point], a: &[Point], b: &[Point], t: f64) {
+    for ((o, &p), &q) in out.iter_mut().zip(a).zip(b) {
+        *o = p * (1.0 - t) + q * t;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -28,7 +28,9 @@
 //! give the same angles; `reduced_rotation_graph_matches_the_full_graph` checks it on bends and
 //! turns past 180°.
 
-use super::assembly::{component_centroids, FactoredSystem, SolveScratch, SystemBuilder};
+use super::assembly::{
+    component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
+};
 use super::rotation::consistent_angles;
 use super::sincos::sin_cos_many;
 use crate::error::{Error, Result};
@@ -377,14 +379,12 @@ impl DiscRigid {
                 ry[r] += row.weight * c * j.y;
             }
         }
-        for ((c, &s), &g) in ws
-            .centroids
-            .iter_mut()
-            .zip(&self.centroid_source)
-            .zip(&self.centroid_target)
-        {
-            *c = s * (1.0 - t) + g * t;
-        }
+        lerp_into(
+            &mut ws.centroids,
+            &self.centroid_source,
+            &self.centroid_target,
+            t,
+        );
         self.system.solve(&mut ws.solve, &ws.centroids, out);
     }
 }

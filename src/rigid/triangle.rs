@@ -12,7 +12,7 @@
 //! normal equations' matrix is constant and factored once; translation is pinned as for the disc
 //! method (see [`super::assembly`]).
 
-use super::assembly::{component_centroids, FactoredSystem, SystemBuilder};
+use super::assembly::{component_centroids, lerp_into, FactoredSystem, SystemBuilder};
 use super::disc::{validate_points, FrameScratch};
 use super::rotation::consistent_angles;
 use crate::error::{Error, Result};
@@ -154,14 +154,12 @@ impl TriangleRigid {
                 ry[r] += a10 * g.x + a11 * g.y;
             }
         }
-        for ((c, &s), &g) in ws
-            .centroids
-            .iter_mut()
-            .zip(&self.centroid_source)
-            .zip(&self.centroid_target)
-        {
-            *c = s * (1.0 - t) + g * t;
-        }
+        lerp_into(
+            &mut ws.centroids,
+            &self.centroid_source,
+            &self.centroid_target,
+            t,
+        );
         self.system.solve(&mut ws.solve, &ws.centroids, out);
     }
 }

@@ -1,6 +1,6 @@
 //! Invariants 1 and 3 of DESIGN.md §5 on every fixture, in both directions.
 
-use crate::common::{compatible, known_failure, open, pairs};
+use crate::common::{compatible, known_failure, mappable_pairs, open, pairs};
 use crmorph::compatible::{build, MorphOptions};
 use crmorph::mesh::sanity_check;
 
@@ -56,11 +56,7 @@ fn every_fixture_gives_flip_free_compatible_meshes_in_both_directions() {
 
 #[test]
 fn features_are_matched_by_name_and_all_present() {
-    for (name, s, t) in pairs() {
-        let from_target = known_failure(&name, false);
-        if from_target && known_failure(&name, true) {
-            continue;
-        }
+    for (name, s, t, from_target) in mappable_pairs() {
         let (s, t) = (open(&s), open(&t));
         let c = compatible(&s, &t, from_target);
         let names: Vec<_> = c.meshes.curves.iter().map(|c| c.name.clone()).collect();

@@ -1,16 +1,12 @@
 //! Invariants 1 and 2 of DESIGN.md §5 for the disc-based interpolation on every fixture.
 
-use crate::common::{compatible, known_failure, open, pairs};
+use crate::common::{compatible, mappable_pairs, open};
 use crmorph::mesh::count_inverted;
 use crmorph::rigid::{Interpolator, Method};
 
 #[test]
 fn frames_are_exact_at_the_ends_and_never_inverted() {
-    for (name, s, t) in pairs() {
-        let from_target = known_failure(&name, false);
-        if from_target && known_failure(&name, true) {
-            continue;
-        }
+    for (name, s, t, from_target) in mappable_pairs() {
         let (s, t) = (open(&s), open(&t));
         let c = compatible(&s, &t, from_target);
         let m = &c.meshes;
