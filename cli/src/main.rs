@@ -32,7 +32,7 @@ struct Cli {
 enum Command {
     /// Morph SRC into TGT; the output's extension picks the format (.json: every frame's mesh).
     Morph(MorphArgs),
-    /// One frame at time T (.json: the mesh at T).
+    /// One frame at time T: .png or .svg (the rendered frame) or .json (the mesh at T).
     Frame(FrameArgs),
     /// The compatible triangulations side by side (.svg) or the meshes (.json).
     Inspect(InspectArgs),
