@@ -435,8 +435,7 @@ fn correspond_candidates(
     let (tp2, tgt_idx) = tp.with_vertices_at(&pins.iter().map(|p| p.1).collect::<Vec<_>>(), snap);
     let (mut sp, mut tp) = (sp2, tp2);
     let mut forced: Vec<(usize, usize)> = src_idx.into_iter().zip(tgt_idx).collect();
-    let candidates: Vec<(Polyline, Polyline, Vec<(usize, usize)>)> = if closed && forced.is_empty()
-    {
+    let candidates: Vec<Candidate> = if closed && forced.is_empty() {
         cyclic_pairs(&sp, &tp, opts)
     } else {
         if closed {
@@ -570,6 +569,10 @@ fn spans_pairs(
     pairs
 }
 
+/// Both curves re-started at a match's first pair, and the matched `(source, target)` vertex
+/// index pairs.
+type Candidate = (Polyline, Polyline, Vec<(usize, usize)>);
+
 /// Cyclic association of a closed pair without anchors: the candidate matches, each as both
 /// curves re-started at its first associated pair and the pairs; without any associable salient
 /// point, the one candidate re-starts the target where it fits the source best
@@ -578,11 +581,7 @@ fn spans_pairs(
 /// Equally cheap matches (a square and a rotated square, an S and an S turned half round) are
 /// all returned, distinct ones only, ordered by how well their matched points fit by scale and
 /// translation alone: the correspondence that needs the least turning first.
-fn cyclic_pairs(
-    sp: &Polyline,
-    tp: &Polyline,
-    opts: &CorrespondenceOptions,
-) -> Vec<(Polyline, Polyline, Vec<(usize, usize)>)> {
+fn cyclic_pairs(sp: &Polyline, tp: &Polyline, opts: &CorrespondenceOptions) -> Vec<Candidate> {
     let ss = salient::detect(sp, opts);
     let ts = salient::detect(tp, opts);
     let found = matching::associate_cyclic(&ss, sp.length(), &ts, tp.length(), opts);
