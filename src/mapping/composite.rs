@@ -14,6 +14,7 @@
 
 use super::harmonic::Harmonic;
 use super::shape_model::ShapeModel;
+use super::untangle::Untangler;
 use crate::correspondence::CurvePair;
 use crate::geometry::Point;
 use crate::mesh::{count_inverted, CompatibleMeshes};
@@ -134,15 +135,19 @@ pub fn composite_map(
     };
     let model = ShapeModel::new(pairs, from_target)?;
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
-    let current = match walk(tri, pairs, &model, h_bsm, &mut harmonic, opts, &mut stats) {
+    let untangler = Untangler::new(&tri.triangles, &fixed);
+    let mut solver = Solver {
+        harmonic: &mut harmonic,
+        untangler: &untangler,
+    };
+    let current = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
             log::debug!("composite map: BSM path failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, from_target)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
-            let c =
-                walk(tri, pairs, &linear, 1.0, &mut harmonic, opts, &mut stats).map_err(|_| e)?;
+            let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.linear_path = true;
             c
         }
@@ -168,6 +173,12 @@ pub fn composite_map(
     Ok((meshes, stats))
 }
 
+/// The free-vertex placement of one step: the harmonic map, untangled locally where it folds.
+struct Solver<'a> {
+    harmonic: &'a mut Harmonic,
+    untangler: &'a Untangler,
+}
+
 /// Follows the intermediate curves of `model` from t = 0 to 1 with adaptive steps no longer
 /// than `h_max`; returns the vertex positions at t = 1.
 fn walk(
@@ -175,7 +186,7 @@ fn walk(
     pairs: &[CurvePair],
     model: &ShapeModel,
     h_max: f64,
-    harmonic: &mut Harmonic,
+    solver: &mut Solver<'_>,
     opts: &MappingOptions,
     stats: &mut MappingStats,
 ) -> Result<Vec<Point>> {
@@ -214,8 +225,9 @@ fn walk(
                     next[v as usize] = q;
                 }
             }
-            harmonic.solve(&current, &mut next)?;
+            solver.harmonic.solve(&current, &mut next)?;
             valid(&next)
+                || (solver.untangler.untangle(&tri.triangles, &mut next, is_bad) && valid(&next))
         };
         if ok {
             std::mem::swap(&mut current, &mut next);

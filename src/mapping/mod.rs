@@ -10,6 +10,7 @@
 pub mod composite;
 pub mod harmonic;
 pub mod shape_model;
+mod untangle;
 
 pub use composite::{composite_map, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;
