@@ -258,8 +258,29 @@ pub fn correspond_all(
             if o.preferred_rotation.is_none() {
                 o.preferred_rotation = Some(local_turn(&out[0], &s.points));
             }
-            let pair =
-                correspond(s, t, p, tol, &o).map_err(|e| name_files(e, src_file, tgt_file))?;
+            let named = |e| name_files(e, src_file, tgt_file);
+            let mut pair = correspond(s, t, p, tol, &o).map_err(named)?;
+            // An open feature whose direction its anchors do not fix: when the shape alone
+            // hardly tells (a straight stroke against an arc), the direction that moves with the
+            // surrounding boundary wins over the one with the slightly better shape fit.
+            if !s.closed && p.len() < 2 {
+                let shape_reversed =
+                    pair.source
+                        .first()
+                        .zip(pair.target.first())
+                        .is_some_and(|(_, &q0)| {
+                            t.points.last().is_some_and(|&l| {
+                                let first = t.points[0];
+                                q0.distance(l) < q0.distance(first)
+                            })
+                        });
+                let other = correspond_with(s, t, p, tol, &o, Some(!shape_reversed))
+                    .map_err(named)?
+                    .swap_remove(0);
+                if misfit_of(&out[0], &other) < misfit_of(&out[0], &pair) - 1e-9 {
+                    pair = other;
+                }
+            }
             out.push(pair);
         }
         let misfit = feature_misfit(&out);
@@ -284,29 +305,34 @@ fn feature_misfit(pairs: &[CurvePair]) -> f64 {
     if features.is_empty() {
         return 0.0;
     }
+    let total: f64 = features.iter().map(|f| misfit_of(boundary, f)).sum();
+    total / features.len() as f64
+}
+
+/// [`feature_misfit`] of one feature `f` against `boundary`.
+fn misfit_of(boundary: &CurvePair, f: &CurvePair) -> f64 {
     let k = LOCAL_TURN_VERTICES
         .max(boundary.source.len() / 10)
         .min(boundary.source.len());
-    let mut total = 0.0;
-    for f in features {
-        let mut sum = 0.0;
-        for (&p, &q) in f.source.iter().zip(&f.target) {
-            let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
-            idx.select_nth_unstable_by(k - 1, |&a, &b| {
-                boundary.source[a]
-                    .distance_squared(p)
-                    .total_cmp(&boundary.source[b].distance_squared(p))
-                    .then(a.cmp(&b))
-            });
-            idx.truncate(k);
-            let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
-            let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
-            let (predicted, spread) = orientation::similarity_apply(&a, &b, p);
-            sum += predicted.distance(q) / spread.max(f64::MIN_POSITIVE);
-        }
-        total += sum / f.source.len().max(1) as f64;
+    if k == 0 {
+        return 0.0;
     }
-    total / features.len() as f64
+    let mut sum = 0.0;
+    for (&p, &q) in f.source.iter().zip(&f.target) {
+        let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
+        idx.select_nth_unstable_by(k - 1, |&a, &b| {
+            boundary.source[a]
+                .distance_squared(p)
+                .total_cmp(&boundary.source[b].distance_squared(p))
+                .then(a.cmp(&b))
+        });
+        idx.truncate(k);
+        let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
+        let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
+        let (predicted, spread) = orientation::similarity_apply(&a, &b, p);
+        sum += predicted.distance(q) / spread.max(f64::MIN_POSITIVE);
+    }
+    sum / f.source.len().max(1) as f64
 }
 
 /// How many of the boundary's corresponded vertices nearest a feature measure its surroundings'
@@ -386,6 +412,19 @@ fn correspond_candidates(
     tol: &Tolerances,
     opts: &CorrespondenceOptions,
 ) -> Result<Vec<CurvePair>> {
+    correspond_with(src, tgt, anchors, tol, opts, None)
+}
+
+/// [`correspond_candidates`], with an open target's direction forced when `reverse` is given
+/// (`Some(true)`: reversed against its drawn direction) instead of chosen by anchors or shape.
+fn correspond_with(
+    src: &ControlCurve,
+    tgt: &ControlCurve,
+    anchors: &[(Point, Point)],
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+    reverse: Option<bool>,
+) -> Result<Vec<CurvePair>> {
     let a = clean(src, tol).map_err(|e| e.in_file(SRC))?;
     let b = clean(tgt, tol).map_err(|e| e.in_file(TGT))?;
     if src.closed != tgt.closed {
@@ -420,7 +459,7 @@ fn correspond_candidates(
     };
     if !closed {
         let pins = project(&sp, &tp);
-        let reverse = match anchor_direction(&pins) {
+        let reverse = match reverse.or_else(|| anchor_direction(&pins)) {
             Some(r) => r,
             None => orientation::open_target_reversed(&sp, &tp),
         };

@@ -5,8 +5,12 @@
 //! Each step `t_k → t_{k+1}` moves the curve vertices onto the shape model's curves at `t_{k+1}`
 //! and places the other vertices by the harmonic map with the cotangent weights of the mesh at
 //! `t_k` (the metric changes every step; the sparsity pattern, and so the symbolic
-//! factorization, does not). A step that flips a triangle (exact orientation test) or makes the
-//! intermediate curves cross is rejected and halved; after an accepted step the step grows back.
+//! factorization, does not). A step whose harmonic map flips a triangle (exact orientation test)
+//! is first repaired by local untangling of the folded triangles' free vertices (`untangle.rs`);
+//! if that fails, or the intermediate curves cross, the step is rejected and halved; after an
+//! accepted step the step grows back. When the BSM path cannot be followed, the same walk is
+//! tried with the BSM's features carried by its boundary ([`ShapeModel::carried`]: features in a
+//! bending arm swing with it), then with straight-line curves.
 //! When the curves' spatial relation changes between source and target — a feature passing
 //! through another or through the boundary, the limitation of the paper's Fig.16 — no flip-free
 //! sequence exists, and the mapping reports the curves concerned instead of returning a folded
@@ -85,7 +89,7 @@ pub struct MappingStats {
     /// Accepted steps (harmonic maps composed into the result).
     pub steps: usize,
     /// Steps rejected because they flipped a triangle or made curves cross, including every
-    /// step of an abandoned BSM path when the straight-line fallback was taken.
+    /// step of an abandoned path when a fallback path was taken.
     pub rejected_steps: usize,
     /// Vertices of the compatible meshes.
     pub vertices: usize,
@@ -93,6 +97,9 @@ pub struct MappingStats {
     pub triangles: usize,
     /// Whether the straight-line fallback path was used instead of the BSM.
     pub linear_path: bool,
+    /// Whether the BSM's features were carried by its boundary
+    /// ([`ShapeModel::carried`]) because the plain BSM path folded the mesh.
+    pub carried_path: bool,
 }
 
 /// Maps the triangulation `tri` of one side of `pairs` onto the other side (§5): returns the
@@ -140,7 +147,19 @@ pub fn composite_map(
         harmonic: &mut harmonic,
         untangler: &untangler,
     };
-    let current = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
+    let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
+        Err(e) if e.is_input() && pairs.len() > 1 => {
+            log::debug!("composite map: BSM path failed ({e}), trying carried features");
+            let carried = ShapeModel::carried(pairs, from_target)?;
+            let abandoned = std::mem::take(&mut stats.steps);
+            stats.rejected_steps += abandoned;
+            let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
+            stats.carried_path = r.is_ok();
+            r.map_err(|_| e)
+        }
+        r => r,
+    };
+    let current = match bsm {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
             log::debug!("composite map: BSM path failed ({e}), trying straight lines");

@@ -189,20 +189,41 @@ fn a_folding_step_is_untangled_instead_of_abandoned() {
 }
 
 #[test]
-fn a_curled_strip_falls_back_to_straight_lines() {
+fn a_curled_strip_carries_its_features_with_the_boundary() {
     // Curled by 270°, the BSM moves the small feature across the narrow strip into the midline
-    // (a limitation of placing curves by their barycenters); the direct map still works.
+    // (a limitation of placing curves by their barycenters); carried by the boundary around it,
+    // the feature stays in its place in the strip.
     let pairs = bent_strip(20.0, 2, 1.5 * PI);
     let tol = Tolerances::new(diagonal(&pairs), 1.0);
     let tri = triangulate(&pairs, &tol, false).unwrap();
     let strict = MappingOptions::default().with_linear_fallback(false);
-    let e = composite_map(&tri, &pairs, &tol, &strict)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("feature-dot"), "{e}");
-    let (m, stats) = composite_map(&tri, &pairs, &tol, &MappingOptions::default()).unwrap();
+    let (m, stats) = composite_map(&tri, &pairs, &tol, &strict).unwrap();
     assert_healthy(&m, &pairs);
-    assert!(stats.linear_path);
+    assert!(stats.carried_path && !stats.linear_path, "{stats:?}");
+}
+
+#[test]
+fn carried_features_end_exactly_on_their_twins_and_stay_inside() {
+    let pairs = bent_strip(20.0, 2, 1.5 * PI);
+    let model = ShapeModel::carried(&pairs, false).unwrap();
+    let mut curves = Vec::new();
+    for (t, side) in [(0.0, false), (1.0, true)] {
+        model.curves_at(t, &mut curves);
+        for (c, p) in curves.iter().zip(&pairs) {
+            assert_eq!(c.as_slice(), crate::triangulation::side_of(p, side));
+        }
+    }
+    for k in 1..20 {
+        model.curves_at(k as f64 / 20.0, &mut curves);
+        for c in &curves[1..] {
+            for q in c {
+                assert!(
+                    crate::geometry::point_in_polygon(*q, &curves[0]),
+                    "t={k}/20: {q}"
+                );
+            }
+        }
+    }
 }
 
 #[test]
