@@ -10,7 +10,9 @@
 //! if that fails, or the intermediate curves cross, the step is rejected and halved; after an
 //! accepted step the step grows back. When the BSM path cannot be followed, the same walk is
 //! tried with the BSM's features carried by its boundary ([`ShapeModel::carried`]: features in a
-//! bending arm swing with it), then with straight-line curves.
+//! bending arm swing with it), then with straight-line curves. Finally, triangles that the steps
+//! left much thinner than they were get their free vertices moved to improve their shapes
+//! (`untangle.rs`), never flipping one.
 //! When the curves' spatial relation changes between source and target — a feature passing
 //! through another or through the boundary, the limitation of the paper's Fig.16 — no flip-free
 //! sequence exists, and the mapping reports the curves concerned instead of returning a folded
@@ -172,6 +174,14 @@ pub fn composite_map(
         }
         Err(e) => return Err(e),
     };
+    // Last, the triangles the steps squeezed get their shapes back where their free vertices
+    // allow (kept only if the exact test still passes).
+    let mut current = current;
+    let before = current.clone();
+    untangler.improve(&tri.triangles, &tri.points, &mut current);
+    if tri.triangles.iter().any(|t| is_bad(t, &current)) {
+        current = before;
+    }
     // The last step put the curve vertices exactly on the far side's curves.
     let (source, target) = if from_target {
         (current, tri.points.clone())

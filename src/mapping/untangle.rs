@@ -10,6 +10,11 @@
 //! exactly here by its vertices. Vertices that cannot be freed by moving alone pull their
 //! neighbours into the next sweep. Curve vertices never move, so the step's curve positions stay
 //! exact; whether the result is accepted is still decided by the caller's exact test.
+//!
+//! The same stars serve a last quality pass over the mapped mesh ([`Untangler::improve`]):
+//! triangles that the steps left much thinner than they were before the mapping get their free
+//! vertices moved where the worst relative quality of their star is best, which keeps the rigid
+//! interpolation of §4.1 from folding them in between.
 
 use crate::geometry::Point;
 
@@ -91,6 +96,71 @@ impl Untangler {
         triangles.iter().all(|t| !bad(t, points))
     }
 
+    /// Improves the shapes of the triangles that the mapping distorted most: every free vertex
+    /// of a triangle whose quality fell below [`DISTORTED`] times its quality in `rest` is moved
+    /// — towards the centroid of its neighbours or towards its max-min-area point, whichever
+    /// raises the smallest relative quality of its star most — in a few sweeps. A move is taken
+    /// only if it raises that smallest relative quality, so no triangle gets worse than the worst
+    /// of its star was and none flips; an exact similarity of `rest` is left untouched.
+    pub(crate) fn improve(&self, triangles: &[[u32; 3]], rest: &[Point], points: &mut [Point]) {
+        let rest_quality: Vec<f64> = triangles.iter().map(|t| quality(t, rest)).collect();
+        // Per vertex, the indices of its triangles (same order as `stars`).
+        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); self.fixed.len()];
+        for (f, t) in triangles.iter().enumerate() {
+            for &v in t {
+                incident[v as usize].push(f as u32);
+            }
+        }
+        let star_min = |v: usize, pts: &[Point]| -> f64 {
+            incident[v]
+                .iter()
+                .map(|&f| {
+                    let f = f as usize;
+                    quality(&triangles[f], pts) / rest_quality[f].max(f64::MIN_POSITIVE)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        for _ in 0..IMPROVE_SWEEPS {
+            let mut active: Vec<u32> = Vec::new();
+            for (f, t) in triangles.iter().enumerate() {
+                if quality(t, points) < DISTORTED * rest_quality[f] {
+                    active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
+                }
+            }
+            active.sort_unstable();
+            active.dedup();
+            if active.is_empty() {
+                return;
+            }
+            let mut moved = false;
+            for &v in &active {
+                let v = v as usize;
+                let here = points[v];
+                let mut best = (star_min(v, points), here);
+                let ring = &self.rings[v];
+                let centroid = ring
+                    .iter()
+                    .fold(Point::ZERO, |a, &w| a + points[w as usize])
+                    / ring.len().max(1) as f64;
+                let lp = self.best_position(v, points).map(|b| b.0);
+                for goal in std::iter::once(centroid).chain(lp) {
+                    for alpha in [1.0, 0.5, 0.25] {
+                        points[v] = here + (goal - here) * alpha;
+                        let q = star_min(v, points);
+                        if q > best.0 {
+                            best = (q, points[v]);
+                        }
+                    }
+                }
+                moved |= best.1 != here;
+                points[v] = best.1;
+            }
+            if !moved {
+                return;
+            }
+        }
+    }
+
     /// The position of `v` maximizing the smallest doubled signed area of its triangles, and that
     /// area; `None` when the linear program has no bounded vertex (a degenerate star).
     fn best_position(&self, v: usize, points: &[Point]) -> Option<(Point, f64)> {
@@ -135,6 +205,25 @@ impl Untangler {
             }
         }
         best.map(|(p, z)| (o + p, z))
+    }
+}
+
+/// A triangle whose quality fell below this fraction of its quality before the mapping is
+/// improved by [`Untangler::improve`].
+const DISTORTED: f64 = 0.5;
+/// Sweeps of [`Untangler::improve`].
+const IMPROVE_SWEEPS: usize = 12;
+
+/// Shape quality of a triangle: `4√3 · area / Σ edge²`, 1 for an equilateral triangle, 0 for a
+/// degenerate one, negative when inverted.
+fn quality(t: &[u32; 3], p: &[Point]) -> f64 {
+    let [a, b, c] = t.map(|v| p[v as usize]);
+    let twice_area = (b - a).perp_dot(c - a);
+    let sum = (b - a).length_squared() + (c - b).length_squared() + (a - c).length_squared();
+    if sum > 0.0 {
+        2.0 * 3f64.sqrt() * twice_area / sum
+    } else {
+        0.0
     }
 }
 
@@ -197,6 +286,34 @@ mod tests {
         let u = Untangler::new(&tris, &fixed);
         assert!(!u.untangle(&tris, &mut pts, folded));
         assert_eq!(&pts[..4], &before[..4]);
+    }
+
+    #[test]
+    fn improving_restores_a_squashed_star_and_leaves_similarities_alone() {
+        let (tris, fixed) = fan();
+        let rest = vec![p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.), p(1., 1.)];
+        let u = Untangler::new(&tris, &fixed);
+        // A similarity of the rest mesh: nothing moves.
+        let sim: Vec<Point> = rest
+            .iter()
+            .map(|&q| p(-q.y, q.x) * 3.0 + p(5., 1.))
+            .collect();
+        let mut same = sim.clone();
+        u.improve(&tris, &rest, &mut same);
+        assert_eq!(same, sim);
+        // The centre pushed next to a side: valid but thin; it comes back.
+        let mut squashed = rest.clone();
+        squashed[4] = p(1.0, 0.01);
+        let worst = |v: &[Point]| {
+            tris.iter()
+                .map(|t| quality(t, v))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let before = worst(&squashed);
+        u.improve(&tris, &rest, &mut squashed);
+        assert!(worst(&squashed) > 2.0 * before, "{squashed:?}");
+        assert_eq!(count_inverted(&tris, &squashed), 0);
+        assert_eq!(&squashed[..4], &rest[..4]);
     }
 
     #[test]
