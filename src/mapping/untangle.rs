@@ -120,6 +120,10 @@ impl Untangler {
                 })
                 .fold(f64::INFINITY, f64::min)
         };
+        // Whether a vertex moved in the last sweep: a vertex none of whose star moved has
+        // nothing new to gain.
+        let mut changed = vec![true; self.fixed.len()];
+        let mut now_changed = vec![false; self.fixed.len()];
         for _ in 0..IMPROVE_SWEEPS {
             let mut active: Vec<u32> = Vec::new();
             for (f, t) in triangles.iter().enumerate() {
@@ -133,8 +137,12 @@ impl Untangler {
                 return;
             }
             let mut moved = false;
+            now_changed.fill(false);
             for &v in &active {
                 let v = v as usize;
+                if !changed[v] && !self.rings[v].iter().any(|&w| changed[w as usize]) {
+                    continue;
+                }
                 let here = points[v];
                 let mut best = (star_min(v, points), here);
                 let ring = &self.rings[v];
@@ -152,9 +160,13 @@ impl Untangler {
                         }
                     }
                 }
-                moved |= best.1 != here;
+                if best.1 != here {
+                    moved = true;
+                    now_changed[v] = true;
+                }
                 points[v] = best.1;
             }
+            std::mem::swap(&mut changed, &mut now_changed);
             if !moved {
                 return;
             }
@@ -196,8 +208,8 @@ impl Untangler {
                         continue;
                     };
                     let p = Point::new(x, y);
-                    if cons.iter().all(|&(g, c)| z <= c + g.dot(p) + eps)
-                        && best.is_none_or(|b| z > b.1)
+                    if best.is_none_or(|b| z > b.1)
+                        && cons.iter().all(|&(g, c)| z <= c + g.dot(p) + eps)
                     {
                         best = Some((p, z));
                     }
