@@ -260,9 +260,10 @@ pub fn correspond_all(
             }
             let named = |e| name_files(e, src_file, tgt_file);
             let mut pair = correspond(s, t, p, tol, &o).map_err(named)?;
-            // An open feature whose direction its anchors do not fix: when the shape alone
-            // hardly tells (a straight stroke against an arc), the direction that moves with the
-            // surrounding boundary wins over the one with the slightly better shape fit.
+            // An open feature whose direction its anchors do not fix runs the way that moves
+            // with the surrounding boundary (`misfit_of`); the shape fit only breaks ties. The
+            // shape alone is a poor guide when it hardly tells (a nearly straight stroke against
+            // an arc), and a feature turned round against its surroundings folds any mapping.
             if !s.closed && p.len() < 2 {
                 let shape_reversed =
                     pair.source
