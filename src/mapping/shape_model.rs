@@ -249,7 +249,7 @@ impl ShapeModel {
                 .iter()
                 .map(|c| (c.from.as_slice(), c.to.as_slice()))
                 .collect();
-            m.carried = Carried::new((&b.from, &b.to), b.rotation, &features);
+            m.carried = Carried::new((&b.from, &b.to), &features);
         }
         Ok(m)
     }
