@@ -40,8 +40,9 @@ pub struct MappingOptions {
     pub max_steps: usize,
     /// Smallest step in `t` before giving up. Default: 1/4096.
     pub min_step: f64,
-    /// When the BSM path cannot be followed without folding, try again with straight-line
-    /// intermediate curves before reporting the failure. Default: true.
+    /// When neither the BSM path nor the BSM with features carried by the boundary can be
+    /// followed without folding, try again with straight-line intermediate curves before
+    /// reporting the failure. Default: true.
     pub linear_fallback: bool,
 }
 
@@ -164,7 +165,7 @@ pub fn composite_map(
     let current = match bsm {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
-            log::debug!("composite map: BSM path failed ({e}), trying straight lines");
+            log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, from_target)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
