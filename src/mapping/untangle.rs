@@ -98,7 +98,8 @@ impl Untangler {
 
     /// Improves the shapes of the triangles that the mapping distorted most: every free vertex
     /// of a triangle whose quality fell below [`DISTORTED`] times its quality in `rest` is moved
-    /// — towards the centroid of its neighbours or towards its max-min-area point, whichever
+    /// — towards the centroid of its neighbours, towards the mean of the points where each of
+    /// its triangles would regain its rest shape, or towards its max-min-area point, whichever
     /// raises the smallest relative quality of its star most — in a few sweeps. A move is taken
     /// only if it raises that smallest relative quality, so no triangle gets worse than the worst
     /// of its star was and none flips; an exact similarity of `rest` is left untouched.
@@ -151,7 +152,21 @@ impl Untangler {
                     .fold(Point::ZERO, |a, &w| a + points[w as usize])
                     / ring.len().max(1) as f64;
                 let lp = self.best_position(v, points).map(|b| b.0);
-                for goal in std::iter::once(centroid).chain(lp) {
+                // Where each triangle of the star would put `v` to regain its rest shape (its
+                // opposite edge kept), averaged.
+                let mut shaped = Point::ZERO;
+                for &[a, b] in &self.stars[v] {
+                    let (a, b) = (a as usize, b as usize);
+                    let (ra, rb, rv) = (rest[a], rest[b], rest[v]);
+                    let (e, r) = (rb - ra, rv - ra);
+                    let l2 = e.length_squared().max(f64::MIN_POSITIVE);
+                    // r / e as a complex number, applied to the current edge.
+                    let z = Point::new(r.dot(e), e.perp_dot(r)) / l2;
+                    let d = points[b] - points[a];
+                    shaped += points[a] + Point::new(z.x * d.x - z.y * d.y, z.x * d.y + z.y * d.x);
+                }
+                let shaped = shaped / self.stars[v].len().max(1) as f64;
+                for goal in [centroid, shaped].into_iter().chain(lp) {
                     for alpha in [1.0, 0.5, 0.25] {
                         points[v] = here + (goal - here) * alpha;
                         let q = star_min(v, points);
