@@ -244,17 +244,96 @@ pub fn correspond_all(
         }
     }
     // The boundary first: the turn of its part nearest each feature breaks the ties of
-    // symmetric features (see `CorrespondenceOptions::preferred_rotation`).
-    let mut out: Vec<CurvePair> = Vec::with_capacity(curves.len());
-    for (k, ((s, t), p)) in curves.iter().zip(&pins).enumerate() {
-        let mut o = opts.clone();
-        if k > 0 && o.preferred_rotation.is_none() {
-            o.preferred_rotation = Some(local_turn(&out[0], &s.points));
+    // symmetric features (see `CorrespondenceOptions::preferred_rotation`). When the boundary
+    // matches its twin equally well in several ways, the features decide: the one that carries
+    // them along with their surroundings wins (`feature_misfit`).
+    let boundary = correspond_candidates(curves[0].0, curves[0].1, &pins[0], tol, opts)
+        .map_err(|e| name_files(e, src_file, tgt_file))?;
+    let mut best: Option<(f64, Vec<CurvePair>)> = None;
+    for b in boundary {
+        let mut out: Vec<CurvePair> = Vec::with_capacity(curves.len());
+        out.push(b);
+        for ((s, t), p) in curves.iter().zip(&pins).skip(1) {
+            let mut o = opts.clone();
+            if o.preferred_rotation.is_none() {
+                o.preferred_rotation = Some(local_turn(&out[0], &s.points));
+            }
+            let named = |e| name_files(e, src_file, tgt_file);
+            let mut pair = correspond(s, t, p, tol, &o).map_err(named)?;
+            // An open feature whose direction its anchors do not fix runs the way that moves
+            // with the surrounding boundary (`misfit_of`); the shape fit only breaks ties. The
+            // shape alone is a poor guide when it hardly tells (a nearly straight stroke against
+            // an arc), and a feature turned round against its surroundings folds any mapping.
+            if !s.closed && p.len() < 2 {
+                let shape_reversed =
+                    pair.source
+                        .first()
+                        .zip(pair.target.first())
+                        .is_some_and(|(_, &q0)| {
+                            t.points.last().is_some_and(|&l| {
+                                let first = t.points[0];
+                                q0.distance(l) < q0.distance(first)
+                            })
+                        });
+                let other = correspond_with(s, t, p, tol, &o, Some(!shape_reversed))
+                    .map_err(named)?
+                    .swap_remove(0);
+                if misfit_of(&out[0], &other) < misfit_of(&out[0], &pair) - 1e-9 {
+                    pair = other;
+                }
+            }
+            out.push(pair);
         }
-        let pair = correspond(s, t, p, tol, &o).map_err(|e| name_files(e, src_file, tgt_file))?;
-        out.push(pair);
+        let misfit = feature_misfit(&out);
+        if best.as_ref().is_none_or(|(m, _)| misfit < *m - 1e-12) {
+            best = Some((misfit, out));
+        }
     }
-    Ok(out)
+    best.map(|b| b.1)
+        .ok_or_else(|| Error::internal("correspondence: no boundary candidate"))
+}
+
+/// How badly the features' correspondence disagrees with the boundary's around them: for every
+/// feature vertex, the distance between its target twin and where the best-fit similarity of the
+/// nearest boundary vertices (source → target, as in [`local_turn`]) carries it, relative to the
+/// size of those boundary vertices' target spread; averaged over features. A boundary
+/// correspondence that turns a symmetric shape the other way round than its features moves them
+/// across the shape, which no mapping can follow without folding.
+fn feature_misfit(pairs: &[CurvePair]) -> f64 {
+    let Some((boundary, features)) = pairs.split_first() else {
+        return 0.0;
+    };
+    if features.is_empty() {
+        return 0.0;
+    }
+    let total: f64 = features.iter().map(|f| misfit_of(boundary, f)).sum();
+    total / features.len() as f64
+}
+
+/// [`feature_misfit`] of one feature `f` against `boundary`.
+fn misfit_of(boundary: &CurvePair, f: &CurvePair) -> f64 {
+    let k = LOCAL_TURN_VERTICES
+        .max(boundary.source.len() / 10)
+        .min(boundary.source.len());
+    if k == 0 {
+        return 0.0;
+    }
+    let mut sum = 0.0;
+    for (&p, &q) in f.source.iter().zip(&f.target) {
+        let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
+        idx.select_nth_unstable_by(k - 1, |&a, &b| {
+            boundary.source[a]
+                .distance_squared(p)
+                .total_cmp(&boundary.source[b].distance_squared(p))
+                .then(a.cmp(&b))
+        });
+        idx.truncate(k);
+        let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
+        let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
+        let (predicted, spread) = orientation::similarity_apply(&a, &b, p);
+        sum += predicted.distance(q) / spread.max(f64::MIN_POSITIVE);
+    }
+    sum / f.source.len().max(1) as f64
 }
 
 /// How many of the boundary's corresponded vertices nearest a feature measure its surroundings'
@@ -315,6 +394,38 @@ pub fn correspond(
     tol: &Tolerances,
     opts: &CorrespondenceOptions,
 ) -> Result<CurvePair> {
+    let mut all = correspond_candidates(src, tgt, anchors, tol, opts)?;
+    if all.is_empty() {
+        return Err(Error::internal("correspondence: no candidate"));
+    }
+    Ok(all.swap_remove(0))
+}
+
+/// [`correspond`] with every equally good correspondence of a closed curve without anchors whose
+/// salient points match in several equally cheap ways (a shape with a half-turn symmetry, such
+/// as an S, matches its twin started at either end): the first is the one [`correspond`]
+/// returns (least turning), the others follow in order of turning. [`correspond_all`] lets the
+/// features decide between them.
+fn correspond_candidates(
+    src: &ControlCurve,
+    tgt: &ControlCurve,
+    anchors: &[(Point, Point)],
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+) -> Result<Vec<CurvePair>> {
+    correspond_with(src, tgt, anchors, tol, opts, None)
+}
+
+/// [`correspond_candidates`], with an open target's direction forced when `reverse` is given
+/// (`Some(true)`: reversed against its drawn direction) instead of chosen by anchors or shape.
+fn correspond_with(
+    src: &ControlCurve,
+    tgt: &ControlCurve,
+    anchors: &[(Point, Point)],
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+    reverse: Option<bool>,
+) -> Result<Vec<CurvePair>> {
     let a = clean(src, tol).map_err(|e| e.in_file(SRC))?;
     let b = clean(tgt, tol).map_err(|e| e.in_file(TGT))?;
     if src.closed != tgt.closed {
@@ -349,7 +460,7 @@ pub fn correspond(
     };
     if !closed {
         let pins = project(&sp, &tp);
-        let reverse = match anchor_direction(&pins) {
+        let reverse = match reverse.or_else(|| anchor_direction(&pins)) {
             Some(r) => r,
             None => orientation::open_target_reversed(&sp, &tp),
         };
@@ -364,8 +475,8 @@ pub fn correspond(
     let (tp2, tgt_idx) = tp.with_vertices_at(&pins.iter().map(|p| p.1).collect::<Vec<_>>(), snap);
     let (mut sp, mut tp) = (sp2, tp2);
     let mut forced: Vec<(usize, usize)> = src_idx.into_iter().zip(tgt_idx).collect();
-    let pairs = if closed && forced.is_empty() {
-        cyclic_pairs(&mut sp, &mut tp, opts)
+    let candidates: Vec<Candidate> = if closed && forced.is_empty() {
+        cyclic_pairs(&sp, &tp, opts)
     } else {
         if closed {
             let (i, j) = forced[0];
@@ -391,31 +502,37 @@ pub fn correspond(
             )
             .with_hint("check the anchor names, or remove crossing anchors"));
         }
-        spans_pairs(&sp, &tp, &forced, opts)
+        let pairs = spans_pairs(&sp, &tp, &forced, opts);
+        vec![(sp, tp, pairs)]
     };
-    let (source, target, salient) = resample::distribute(
-        &sp,
-        &tp,
-        &pairs,
-        opts.max_edge(tol),
-        opts.merge_fraction * opts.max_edge(tol),
-        snap,
-    )
-    .map_err(|e| match e {
-        Error::Input(mut ie) => {
-            ie.element = Some(src.id.clone());
-            Error::Input(ie)
-        }
-        other => other,
-    })?;
-    Ok(CurvePair {
-        id: src.id.clone(),
-        kind: src.kind,
-        closed,
-        source,
-        target,
-        salient,
-    })
+    candidates
+        .into_iter()
+        .map(|(sp, tp, pairs)| {
+            let (source, target, salient) = resample::distribute(
+                &sp,
+                &tp,
+                &pairs,
+                opts.max_edge(tol),
+                opts.merge_fraction * opts.max_edge(tol),
+                snap,
+            )
+            .map_err(|e| match e {
+                Error::Input(mut ie) => {
+                    ie.element = Some(src.id.clone());
+                    Error::Input(ie)
+                }
+                other => other,
+            })?;
+            Ok(CurvePair {
+                id: src.id.clone(),
+                kind: src.kind,
+                closed,
+                source,
+                target,
+                salient,
+            })
+        })
+        .collect()
 }
 
 /// Whether anchors say the open target runs backwards: `Some(true)` when more anchor pairs are
@@ -492,54 +609,65 @@ fn spans_pairs(
     pairs
 }
 
-/// Cyclic association of a closed pair without anchors. Re-starts both curves at the first
-/// associated pair and returns the pairs; without any associable salient point, the target is
-/// re-started where it fits the source best ([`orientation::best_closed_start`]).
+/// Both curves re-started at a match's first pair, and the matched `(source, target)` vertex
+/// index pairs.
+type Candidate = (Polyline, Polyline, Vec<(usize, usize)>);
+
+/// Cyclic association of a closed pair without anchors: the candidate matches, each as both
+/// curves re-started at its first associated pair and the pairs; without any associable salient
+/// point, the one candidate re-starts the target where it fits the source best
+/// ([`orientation::best_closed_start`]).
 ///
-/// Among equally cheap matches (a square and a rotated square), the one whose matched points fit
-/// by scale and translation alone best wins: the correspondence that needs the least turning.
-fn cyclic_pairs(
-    sp: &mut Polyline,
-    tp: &mut Polyline,
-    opts: &CorrespondenceOptions,
-) -> Vec<(usize, usize)> {
+/// Equally cheap matches (a square and a rotated square, an S and an S turned half round) are
+/// all returned, distinct ones only, ordered by how well their matched points fit by scale and
+/// translation alone: the correspondence that needs the least turning first.
+fn cyclic_pairs(sp: &Polyline, tp: &Polyline, opts: &CorrespondenceOptions) -> Vec<Candidate> {
     let ss = salient::detect(sp, opts);
     let ts = salient::detect(tp, opts);
     let found = matching::associate_cyclic(&ss, sp.length(), &ts, tp.length(), opts);
-    let chosen = found
-        .iter()
-        .map(|pairs| {
-            let a: Vec<Point> = pairs
-                .iter()
-                .map(|&(x, _)| sp.points()[ss[x].index])
-                .collect();
-            let b: Vec<Point> = pairs
-                .iter()
-                .map(|&(_, y)| tp.points()[ts[y].index])
-                .collect();
-            (
-                orientation::turn_residual(&a, &b, opts.preferred_rotation),
-                pairs,
-            )
-        })
-        .fold(None::<(f64, &Vec<(usize, usize)>)>, |best, c| match best {
-            Some(b) if b.0 <= c.0 => Some(b),
-            _ => Some(c),
-        });
-    let Some((_, pairs)) = chosen else {
+    let mut scored: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
+    for pairs in found {
+        // The same match started at another of its pairs is the same correspondence.
+        let mut key = pairs.clone();
+        key.sort_unstable();
+        if scored.iter().any(|(_, p)| {
+            let mut k = p.clone();
+            k.sort_unstable();
+            k == key
+        }) {
+            continue;
+        }
+        let a: Vec<Point> = pairs
+            .iter()
+            .map(|&(x, _)| sp.points()[ss[x].index])
+            .collect();
+        let b: Vec<Point> = pairs
+            .iter()
+            .map(|&(_, y)| tp.points()[ts[y].index])
+            .collect();
+        scored.push((
+            orientation::turn_residual(&a, &b, opts.preferred_rotation),
+            pairs,
+        ));
+    }
+    // Stable: equal residuals keep the match order.
+    scored.sort_by(|x, y| x.0.total_cmp(&y.0));
+    if scored.is_empty() {
         let j = orientation::best_closed_start(sp, tp, opts.preferred_rotation);
-        *tp = tp.rotated(j);
-        return vec![(0, 0)];
-    };
-    let (i, j) = (ss[pairs[0].0].index, ts[pairs[0].1].index);
+        return vec![(sp.clone(), tp.rotated(j), vec![(0, 0)])];
+    }
     let (n, m) = (sp.len(), tp.len());
-    let out = pairs
-        .iter()
-        .map(|&(x, y)| ((ss[x].index + n - i) % n, (ts[y].index + m - j) % m))
-        .collect();
-    *sp = sp.rotated(i);
-    *tp = tp.rotated(j);
-    out
+    scored
+        .into_iter()
+        .map(|(_, pairs)| {
+            let (i, j) = (ss[pairs[0].0].index, ts[pairs[0].1].index);
+            let out = pairs
+                .iter()
+                .map(|&(x, y)| ((ss[x].index + n - i) % n, (ts[y].index + m - j) % m))
+                .collect();
+            (sp.rotated(i), tp.rotated(j), out)
+        })
+        .collect()
 }
 
 /// A curve's points checked and cleaned: finite and within range, consecutive points closer than

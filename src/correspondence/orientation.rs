@@ -94,6 +94,31 @@ pub(crate) fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
     cross.atan2(dot)
 }
 
+/// Where the least-squares similarity (rotation, uniform scale, translation) carrying `a` onto
+/// `b` takes `p`, and the RMS distance of `b` from its centroid (the scale to measure misfits
+/// in). Equal lengths assumed; a degenerate `a` maps everything to `b`'s centroid.
+pub(crate) fn similarity_apply(a: &[Point], b: &[Point], p: Point) -> (Point, f64) {
+    let (ca, cb) = (centroid(a), centroid(b));
+    let (mut aa, mut bb, mut dot, mut cross) = (0.0, 0.0, 0.0, 0.0);
+    for (&x, &y) in a.iter().zip(b) {
+        let (x, y) = (x - ca, y - cb);
+        aa += x.length_squared();
+        bb += y.length_squared();
+        dot += x.dot(y);
+        cross += x.perp_dot(y);
+    }
+    let spread = (bb / b.len().max(1) as f64).sqrt();
+    if aa <= 0.0 {
+        return (cb, spread);
+    }
+    let (c, s) = (dot / aa, cross / aa);
+    let d = p - ca;
+    (
+        cb + Point::new(c * d.x - s * d.y, s * d.x + c * d.y),
+        spread,
+    )
+}
+
 /// [`unrotated_residual`] after turning `a` by `turn` (none when `None`): how far matching `a` to
 /// `b` is from needing exactly that turn. The tie-breaker between symmetric correspondences.
 pub(crate) fn turn_residual(a: &[Point], b: &[Point], turn: Option<f64>) -> f64 {

@@ -253,6 +253,83 @@ fn all_pairs_boundary_first_then_features_with_anchors() {
 }
 
 #[test]
+fn a_half_turn_symmetric_boundary_turns_the_way_its_features_say() {
+    // A 4×1 bar whose corners match its twin equally well turned by 0° or 180°. The feature
+    // near the left end moves to the right end, so only the half turn keeps it with its
+    // surroundings; the least-turning tie-break alone would pick 0° and drag the feature
+    // across the bar.
+    let tol = tol();
+    let opts = CorrespondenceOptions::default();
+    let bar = dense_polygon(&[p(0., 0.), p(4., 0.), p(4., 1.), p(0., 1.)], 4);
+    let half = |q: Point| p(4.0 - q.x, 1.0 - q.y);
+    let line = vec![p(0.5, 0.2), p(0.6, 0.5), p(0.5, 0.8)];
+    let src = controls(
+        curve("boundary", true, bar.clone()),
+        vec![curve("feature-line", false, line.clone())],
+        vec![],
+    );
+    let tgt = controls(
+        curve("boundary", true, bar.iter().map(|&q| half(q)).collect()),
+        vec![curve(
+            "feature-line",
+            false,
+            line.iter().map(|&q| half(q)).collect(),
+        )],
+        vec![],
+    );
+    let pairs = correspond_all("a.svg", &src, "b.svg", &tgt, &tol, &opts).unwrap();
+    for pair in &pairs {
+        for (&a, &b) in pair.source.iter().zip(&pair.target) {
+            assert!(half(a).distance(b) < 1e-9, "{}: {a} ↦ {b}", pair.id);
+        }
+    }
+    assert!(feature_misfit(&pairs) < 1e-9);
+}
+
+#[test]
+fn an_open_feature_runs_the_way_its_surroundings_move() {
+    // A stroke along a bar (a trapezoid, so it has no symmetry), nearly straight with a small
+    // hook at its start; in the target it is drawn from the same end, gently bent, with the
+    // hook at its far end. By shape alone the reversed target fits marginally better; the bar
+    // around it does not move, so the stroke must not turn round.
+    let tol = tol();
+    let opts = CorrespondenceOptions::default();
+    let bar = dense_polygon(&[p(0., 0.), p(10., 0.), p(10., 3.), p(0., 2.)], 8);
+    let src_line: Vec<Point> = std::iter::once(p(1.0, 1.4))
+        .chain((0..=16).map(|k| p(1.2 + 7.8 * k as f64 / 16.0, 1.0)))
+        .collect();
+    let tgt_line: Vec<Point> = (0..=16)
+        .map(|k| {
+            let u = k as f64 / 16.0;
+            p(1.0 + 7.8 * u, 1.0 + 0.3 * (u * std::f64::consts::PI).sin())
+        })
+        .chain(std::iter::once(p(9.0, 0.6)))
+        .collect();
+    let (a, b) = (
+        Polyline::new(src_line.clone(), false),
+        Polyline::new(tgt_line.clone(), false),
+    );
+    assert!(
+        orientation::open_target_reversed(&a, &b),
+        "premise: shape alone reverses"
+    );
+    let src = controls(
+        curve("boundary", true, bar.clone()),
+        vec![curve("feature-stroke", false, src_line)],
+        vec![],
+    );
+    let tgt = controls(
+        curve("boundary", true, bar),
+        vec![curve("feature-stroke", false, tgt_line)],
+        vec![],
+    );
+    let pairs = correspond_all("a.svg", &src, "b.svg", &tgt, &tol, &opts).unwrap();
+    let stroke = &pairs[1];
+    assert_eq!(stroke.target[0], p(1.0, 1.0));
+    assert_eq!(*stroke.target.last().unwrap(), p(9.0, 0.6));
+}
+
+#[test]
 fn input_errors_name_the_file_and_the_element() {
     let tol = tol();
     let opts = CorrespondenceOptions::default();

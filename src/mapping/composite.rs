@@ -5,8 +5,14 @@
 //! Each step `t_k → t_{k+1}` moves the curve vertices onto the shape model's curves at `t_{k+1}`
 //! and places the other vertices by the harmonic map with the cotangent weights of the mesh at
 //! `t_k` (the metric changes every step; the sparsity pattern, and so the symbolic
-//! factorization, does not). A step that flips a triangle (exact orientation test) or makes the
-//! intermediate curves cross is rejected and halved; after an accepted step the step grows back.
+//! factorization, does not). A step whose harmonic map flips a triangle (exact orientation test)
+//! is first repaired by local untangling of the folded triangles' free vertices (`untangle.rs`);
+//! if that fails, or the intermediate curves cross, the step is rejected and halved; after an
+//! accepted step the step grows back. When the BSM path cannot be followed, the same walk is
+//! tried with the BSM's features carried by its boundary ([`ShapeModel::carried`]: features in a
+//! bending arm swing with it), then with straight-line curves. Finally, triangles that the steps
+//! left much thinner than they were get their free vertices moved to improve their shapes
+//! (`untangle.rs`), never flipping one.
 //! When the curves' spatial relation changes between source and target — a feature passing
 //! through another or through the boundary, the limitation of the paper's Fig.16 — no flip-free
 //! sequence exists, and the mapping reports the curves concerned instead of returning a folded
@@ -14,6 +20,7 @@
 
 use super::harmonic::Harmonic;
 use super::shape_model::ShapeModel;
+use super::untangle::Untangler;
 use crate::correspondence::CurvePair;
 use crate::geometry::Point;
 use crate::mesh::{count_inverted, CompatibleMeshes};
@@ -33,8 +40,9 @@ pub struct MappingOptions {
     pub max_steps: usize,
     /// Smallest step in `t` before giving up. Default: 1/4096.
     pub min_step: f64,
-    /// When the BSM path cannot be followed without folding, try again with straight-line
-    /// intermediate curves before reporting the failure. Default: true.
+    /// When neither the BSM path nor the BSM with features carried by the boundary can be
+    /// followed without folding, try again with straight-line intermediate curves before
+    /// reporting the failure. Default: true.
     pub linear_fallback: bool,
 }
 
@@ -84,7 +92,7 @@ pub struct MappingStats {
     /// Accepted steps (harmonic maps composed into the result).
     pub steps: usize,
     /// Steps rejected because they flipped a triangle or made curves cross, including every
-    /// step of an abandoned BSM path when the straight-line fallback was taken.
+    /// step of an abandoned path when a fallback path was taken.
     pub rejected_steps: usize,
     /// Vertices of the compatible meshes.
     pub vertices: usize,
@@ -92,6 +100,9 @@ pub struct MappingStats {
     pub triangles: usize,
     /// Whether the straight-line fallback path was used instead of the BSM.
     pub linear_path: bool,
+    /// Whether the BSM's features were carried by its boundary
+    /// ([`ShapeModel::carried`]) because the plain BSM path folded the mesh.
+    pub carried_path: bool,
 }
 
 /// Maps the triangulation `tri` of one side of `pairs` onto the other side (§5): returns the
@@ -134,20 +145,44 @@ pub fn composite_map(
     };
     let model = ShapeModel::new(pairs, from_target)?;
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
-    let current = match walk(tri, pairs, &model, h_bsm, &mut harmonic, opts, &mut stats) {
+    let untangler = Untangler::new(&tri.triangles, &fixed);
+    let mut solver = Solver {
+        harmonic: &mut harmonic,
+        untangler: &untangler,
+    };
+    let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
+        Err(e) if e.is_input() && pairs.len() > 1 => {
+            log::debug!("composite map: BSM path failed ({e}), trying carried features");
+            let carried = ShapeModel::carried(pairs, from_target)?;
+            let abandoned = std::mem::take(&mut stats.steps);
+            stats.rejected_steps += abandoned;
+            let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
+            stats.carried_path = r.is_ok();
+            r.map_err(|_| e)
+        }
+        r => r,
+    };
+    let current = match bsm {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
-            log::debug!("composite map: BSM path failed ({e}), trying straight lines");
+            log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, from_target)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
-            let c =
-                walk(tri, pairs, &linear, 1.0, &mut harmonic, opts, &mut stats).map_err(|_| e)?;
+            let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.linear_path = true;
             c
         }
         Err(e) => return Err(e),
     };
+    // Last, the triangles the steps squeezed get their shapes back where their free vertices
+    // allow (kept only if the exact test still passes).
+    let mut current = current;
+    let before = current.clone();
+    untangler.improve(&tri.triangles, &tri.points, &mut current);
+    if tri.triangles.iter().any(|t| is_bad(t, &current)) {
+        current = before;
+    }
     // The last step put the curve vertices exactly on the far side's curves.
     let (source, target) = if from_target {
         (current, tri.points.clone())
@@ -168,6 +203,12 @@ pub fn composite_map(
     Ok((meshes, stats))
 }
 
+/// The free-vertex placement of one step: the harmonic map, untangled locally where it folds.
+struct Solver<'a> {
+    harmonic: &'a mut Harmonic,
+    untangler: &'a Untangler,
+}
+
 /// Follows the intermediate curves of `model` from t = 0 to 1 with adaptive steps no longer
 /// than `h_max`; returns the vertex positions at t = 1.
 fn walk(
@@ -175,7 +216,7 @@ fn walk(
     pairs: &[CurvePair],
     model: &ShapeModel,
     h_max: f64,
-    harmonic: &mut Harmonic,
+    solver: &mut Solver<'_>,
     opts: &MappingOptions,
     stats: &mut MappingStats,
 ) -> Result<Vec<Point>> {
@@ -214,8 +255,9 @@ fn walk(
                     next[v as usize] = q;
                 }
             }
-            harmonic.solve(&current, &mut next)?;
+            solver.harmonic.solve(&current, &mut next)?;
             valid(&next)
+                || (solver.untangler.untangle(&tri.triangles, &mut next, is_bad) && valid(&next))
         };
         if ok {
             std::mem::swap(&mut current, &mut next);

@@ -7,9 +7,11 @@
 //! barycenter-based shape model ([`shape_model`], Fig.9), and the steps are refined adaptively
 //! until none flips a triangle ([`composite`], Fig.10).
 
+mod carried;
 pub mod composite;
 pub mod harmonic;
 pub mod shape_model;
+mod untangle;
 
 pub use composite::{composite_map, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;

@@ -11,6 +11,7 @@
 //! best-fit rotation relative to the source curve is `t` times the source-to-target rotation, and
 //! moved so that its barycenter sits on the barycenter mesh's node at `t`.
 
+use super::carried::Carried;
 use crate::correspondence::CurvePair;
 use crate::geometry::{bounding_box, centroid, Point};
 use crate::rigid::Interpolator;
@@ -49,6 +50,9 @@ pub struct ShapeModel {
     interpolator: Option<Interpolator>,
     /// Straight-line vertex interpolation instead of the BSM (see [`ShapeModel::linear`]).
     linear: bool,
+    /// Features carried by the boundary instead of placed by the barycenter mesh (see
+    /// [`ShapeModel::carried`]).
+    carried: Option<Carried>,
 }
 
 /// Angle of the rotation that best maps the centred point set `a` onto the centred set `b`
@@ -218,6 +222,7 @@ impl ShapeModel {
             bary: [b0, b1],
             interpolator,
             linear: false,
+            carried: None,
         })
     }
 
@@ -229,6 +234,23 @@ impl ShapeModel {
         let mut m = ShapeModel::new(pairs, from_target)?;
         m.interpolator = None;
         m.linear = true;
+        Ok(m)
+    }
+
+    /// The BSM's boundary with the features carried by it: each feature vertex keeps its
+    /// offset in the local frames of the boundary vertices nearest to it (`carried.rs`), instead
+    /// of its curve moving as one body placed by the barycenter mesh. A feature in an arm that
+    /// swings (a U becoming an S) swings with it. The composite mapping tries it when the BSM
+    /// path folds the mesh. Falls back to the plain BSM when the boundary has a zero-length edge.
+    pub fn carried(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
+        let mut m = ShapeModel::new(pairs, from_target)?;
+        if let Some((b, fs)) = m.curves.split_first() {
+            let features: Vec<(&[Point], &[Point])> = fs
+                .iter()
+                .map(|c| (c.from.as_slice(), c.to.as_slice()))
+                .collect();
+            m.carried = Carried::new((&b.from, &b.to), &features);
+        }
         Ok(m)
     }
 
@@ -281,6 +303,10 @@ impl ShapeModel {
             for q in o.iter_mut() {
                 *q = *centre + rotate(*q, turn);
             }
+        }
+        if let (Some(carried), Some((boundary, features))) = (&self.carried, out.split_first_mut())
+        {
+            carried.features_at(t, boundary, features);
         }
     }
 }

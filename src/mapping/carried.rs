@@ -1,0 +1,129 @@
+//! Features carried by the boundary around them: an alternative placement of the feature curves
+//! of the shape model (§5) for shapes that bend.
+//!
+//! The barycenter-based shape model moves every curve as one body whose position comes from
+//! the barycenter mesh. When the shape bends — a U becoming an S — a feature in an arm has to
+//! swing with that arm, which the barycenter mesh (a few nodes, all connected) cannot express,
+//! and the intermediate features leave the band of the boundary they lie in. Here each feature
+//! vertex is instead attached to the boundary around it: the boundary vertices within twice its
+//! distance to the boundary (at least [`MIN_CARRIERS`] of them), weighted `1/d² − 1/R²` so that
+//! the weights fade out smoothly at that radius `R`. At time `t` the vertex moves by the
+//! weighted best-fit similarity (Procrustes) that carries those boundary vertices to their
+//! intermediate positions. The neighbourhood is a region of the plane, not a vertex count, so
+//! the result does not depend on how densely the curves are sampled. Doing so once from the
+//! source side and once from the target side and blending the two by `t` gives exactly the
+//! source features at 0 and the target features at 1.
+
+use crate::geometry::Point;
+
+/// Fewest boundary vertices carrying one feature vertex.
+const MIN_CARRIERS: usize = 4;
+/// Carriers lie within this multiple of the feature vertex's distance to the boundary.
+const REACH: f64 = 2.0;
+
+/// One side's attachment of a feature vertex: its position and the weighted carrier vertices.
+#[derive(Debug, Clone)]
+struct Attachment {
+    point: Point,
+    carriers: Vec<(u32, f64)>,
+}
+
+/// Feature vertices attached to the boundary at both ends of the morph.
+#[derive(Debug, Clone)]
+pub(crate) struct Carried {
+    /// Boundary at t = 0 and t = 1.
+    boundary: [Vec<Point>; 2],
+    /// Per feature, per vertex: attachments at t = 0 and t = 1.
+    features: Vec<Vec<[Attachment; 2]>>,
+}
+
+fn attach(boundary: &[Point], p: Point) -> Attachment {
+    let mut by_distance: Vec<(f64, u32)> = boundary
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (b.distance_squared(p), i as u32))
+        .collect();
+    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let nearest = by_distance[0].0;
+    // Radius²: REACH times the distance, but wide enough for MIN_CARRIERS vertices, and a
+    // little beyond the last one kept so that every carrier has a positive weight.
+    let k = MIN_CARRIERS.min(by_distance.len());
+    let r2 = (REACH * REACH * nearest).max(by_distance[k - 1].0) * (1.0 + 1e-6) + f64::MIN_POSITIVE;
+    let floor = 1e-12 * r2;
+    let carriers: Vec<(u32, f64)> = by_distance
+        .iter()
+        .take_while(|c| c.0 < r2)
+        .map(|&(d2, i)| (i, 1.0 / d2.max(floor) - 1.0 / r2))
+        .collect();
+    Attachment { point: p, carriers }
+}
+
+/// Where the weighted best-fit similarity carrying the carriers from `from` to `to` takes the
+/// attached point.
+fn carry(a: &Attachment, from: &[Point], to: &[Point]) -> Point {
+    let (mut w, mut cf, mut ct) = (0.0, Point::ZERO, Point::ZERO);
+    for &(i, wi) in &a.carriers {
+        w += wi;
+        cf += from[i as usize] * wi;
+        ct += to[i as usize] * wi;
+    }
+    if w <= 0.0 {
+        return a.point;
+    }
+    let (cf, ct) = (cf / w, ct / w);
+    // Complex least squares: (dot + i·cross) / Σ|x|² is scale times rotation.
+    let (mut xx, mut dot, mut cross) = (0.0, 0.0, 0.0);
+    for &(i, wi) in &a.carriers {
+        let (x, y) = (from[i as usize] - cf, to[i as usize] - ct);
+        xx += wi * x.length_squared();
+        dot += wi * x.dot(y);
+        cross += wi * x.perp_dot(y);
+    }
+    let d = a.point - cf;
+    if xx <= 0.0 {
+        return ct + d;
+    }
+    let (c, s) = (dot / xx, cross / xx);
+    ct + Point::new(c * d.x - s * d.y, s * d.x + c * d.y)
+}
+
+impl Carried {
+    /// Attaches the features (`features[f] = (source, target)` vertex lists) to the boundary
+    /// `(source, target)`. `None` if the boundary has no vertices or the two sides differ in
+    /// length.
+    pub(crate) fn new(
+        boundary: (&[Point], &[Point]),
+        features: &[(&[Point], &[Point])],
+    ) -> Option<Self> {
+        let (b0, b1) = boundary;
+        if b0.is_empty() || b1.len() != b0.len() {
+            return None;
+        }
+        let features = features
+            .iter()
+            .map(|(f0, f1)| {
+                f0.iter()
+                    .zip(f1.iter())
+                    .map(|(&p, &q)| [attach(b0, p), attach(b1, q)])
+                    .collect()
+            })
+            .collect();
+        Some(Carried {
+            boundary: [b0.to_vec(), b1.to_vec()],
+            features,
+        })
+    }
+
+    /// The features at `t`, given the intermediate boundary `boundary_t` (same vertex count),
+    /// into `out[f]`.
+    pub(crate) fn features_at(&self, t: f64, boundary_t: &[Point], out: &mut [Vec<Point>]) {
+        for (o, f) in out.iter_mut().zip(&self.features) {
+            o.clear();
+            o.extend(f.iter().map(|[a0, a1]| {
+                let p0 = carry(a0, &self.boundary[0], boundary_t);
+                let p1 = carry(a1, &self.boundary[1], boundary_t);
+                p0 * (1.0 - t) + p1 * t
+            }));
+        }
+    }
+}

@@ -1,0 +1,375 @@
+//! Local untangling of a harmonic step that folds a few triangles (§5).
+//!
+//! The harmonic map is flip-free only for convex domains; the composite mapping's domains are
+//! not convex, and a curve edge that moves fast relative to its surroundings can leave a free
+//! vertex of an adjacent triangle on its wrong side. Halving the step does not help once the
+//! triangle is thin. Instead, the free vertices of the folded (or numerically flat) triangles are
+//! moved, one at a time, to the point that maximizes the smallest signed area of their incident
+//! triangles — the classic optimization-based untangling of Freitag and Plassmann, whose local
+//! problem is a linear program in three unknowns (the position and the smallest area), solved
+//! exactly here by its vertices. Vertices that cannot be freed by moving alone pull their
+//! neighbours into the next sweep. Curve vertices never move, so the step's curve positions stay
+//! exact; whether the result is accepted is still decided by the caller's exact test.
+//!
+//! The same stars serve a last quality pass over the mapped mesh ([`Untangler::improve`]):
+//! triangles that the steps left much thinner than they were before the mapping get their free
+//! vertices moved where the worst relative quality of their star is best, which keeps the rigid
+//! interpolation of §4.1 from folding them in between.
+
+use crate::geometry::Point;
+
+/// Per vertex, the incident triangles as the counter-clockwise opposite edge `(a, b)` (the
+/// triangle is `(v, a, b)`), and the mesh's vertex neighbours.
+#[derive(Debug, Clone)]
+pub(crate) struct Untangler {
+    stars: Vec<Vec<[u32; 2]>>,
+    rings: Vec<Vec<u32>>,
+    fixed: Vec<bool>,
+}
+
+/// Sweeps over the tangled region before giving up.
+const SWEEPS: usize = 12;
+
+impl Untangler {
+    /// Prepares the stars of `triangles` (counter-clockwise in the source) over `fixed.len()`
+    /// vertices; `fixed` vertices never move.
+    pub(crate) fn new(triangles: &[[u32; 3]], fixed: &[bool]) -> Self {
+        let n = fixed.len();
+        let mut stars = vec![Vec::new(); n];
+        for t in triangles {
+            for k in 0..3 {
+                stars[t[k] as usize].push([t[(k + 1) % 3], t[(k + 2) % 3]]);
+            }
+        }
+        let rings = crate::mesh::one_rings(triangles, n);
+        Untangler {
+            stars,
+            rings,
+            fixed: fixed.to_vec(),
+        }
+    }
+
+    /// Moves free vertices of the triangles for which `bad` holds until none does or the sweeps
+    /// run out; returns whether none does.
+    pub(crate) fn untangle(
+        &self,
+        triangles: &[[u32; 3]],
+        points: &mut [Point],
+        bad: impl Fn(&[u32; 3], &[Point]) -> bool,
+    ) -> bool {
+        let mut active: Vec<u32> = Vec::new();
+        let mut stuck: Vec<u32> = Vec::new();
+        for _ in 0..SWEEPS {
+            active.clear();
+            for t in triangles.iter().filter(|t| bad(t, points)) {
+                active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
+            }
+            if active.is_empty() && triangles.iter().all(|t| !bad(t, points)) {
+                return true;
+            }
+            // Vertices that could not be freed last sweep bring their free neighbours.
+            for &v in &stuck {
+                active.extend(
+                    self.rings[v as usize]
+                        .iter()
+                        .filter(|&&w| !self.fixed[w as usize]),
+                );
+            }
+            active.sort_unstable();
+            active.dedup();
+            if active.is_empty() {
+                return false;
+            }
+            stuck.clear();
+            for &v in &active {
+                match self.best_position(v as usize, points) {
+                    Some((p, area)) => {
+                        points[v as usize] = p;
+                        if area <= 0.0 {
+                            stuck.push(v);
+                        }
+                    }
+                    None => stuck.push(v),
+                }
+            }
+        }
+        triangles.iter().all(|t| !bad(t, points))
+    }
+
+    /// Improves the shapes of the triangles that the mapping distorted most: every free vertex
+    /// of a triangle whose quality fell below [`DISTORTED`] times its quality in `rest` is moved
+    /// — towards the centroid of its neighbours, towards the mean of the points where each of
+    /// its triangles would regain its rest shape, or towards its max-min-area point, whichever
+    /// raises the smallest relative quality of its star most — in a few sweeps. A move is taken
+    /// only if it raises that smallest relative quality, so no triangle gets worse than the worst
+    /// of its star was and none flips; an exact similarity of `rest` is left untouched.
+    pub(crate) fn improve(&self, triangles: &[[u32; 3]], rest: &[Point], points: &mut [Point]) {
+        let rest_quality: Vec<f64> = triangles.iter().map(|t| quality(t, rest)).collect();
+        // Per vertex, the indices of its triangles (same order as `stars`).
+        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); self.fixed.len()];
+        for (f, t) in triangles.iter().enumerate() {
+            for &v in t {
+                incident[v as usize].push(f as u32);
+            }
+        }
+        let star_min = |v: usize, pts: &[Point]| -> f64 {
+            incident[v]
+                .iter()
+                .map(|&f| {
+                    let f = f as usize;
+                    quality(&triangles[f], pts) / rest_quality[f].max(f64::MIN_POSITIVE)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        // Whether a vertex moved in the last sweep: a vertex none of whose star moved has
+        // nothing new to gain.
+        let mut changed = vec![true; self.fixed.len()];
+        let mut now_changed = vec![false; self.fixed.len()];
+        for _ in 0..IMPROVE_SWEEPS {
+            let mut active: Vec<u32> = Vec::new();
+            for (f, t) in triangles.iter().enumerate() {
+                if quality(t, points) < DISTORTED * rest_quality[f] {
+                    active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
+                }
+            }
+            active.sort_unstable();
+            active.dedup();
+            if active.is_empty() {
+                return;
+            }
+            let mut moved = false;
+            now_changed.fill(false);
+            for &v in &active {
+                let v = v as usize;
+                if !changed[v] && !self.rings[v].iter().any(|&w| changed[w as usize]) {
+                    continue;
+                }
+                let here = points[v];
+                let mut best = (star_min(v, points), here);
+                let ring = &self.rings[v];
+                let centroid = ring
+                    .iter()
+                    .fold(Point::ZERO, |a, &w| a + points[w as usize])
+                    / ring.len().max(1) as f64;
+                let lp = self.best_position(v, points).map(|b| b.0);
+                // Where each triangle of the star would put `v` to regain its rest shape (its
+                // opposite edge kept), averaged.
+                let mut shaped = Point::ZERO;
+                for &[a, b] in &self.stars[v] {
+                    let (a, b) = (a as usize, b as usize);
+                    let (ra, rb, rv) = (rest[a], rest[b], rest[v]);
+                    let (e, r) = (rb - ra, rv - ra);
+                    let l2 = e.length_squared().max(f64::MIN_POSITIVE);
+                    // r / e as a complex number, applied to the current edge.
+                    let z = Point::new(r.dot(e), e.perp_dot(r)) / l2;
+                    let d = points[b] - points[a];
+                    shaped += points[a] + Point::new(z.x * d.x - z.y * d.y, z.x * d.y + z.y * d.x);
+                }
+                let shaped = shaped / self.stars[v].len().max(1) as f64;
+                for goal in [centroid, shaped].into_iter().chain(lp) {
+                    for alpha in [1.0, 0.5, 0.25] {
+                        points[v] = here + (goal - here) * alpha;
+                        let q = star_min(v, points);
+                        if q > best.0 {
+                            best = (q, points[v]);
+                        }
+                    }
+                }
+                if best.1 != here {
+                    moved = true;
+                    now_changed[v] = true;
+                }
+                points[v] = best.1;
+            }
+            std::mem::swap(&mut changed, &mut now_changed);
+            if !moved {
+                return;
+            }
+        }
+    }
+
+    /// The position of `v` maximizing the smallest doubled signed area of its triangles, and that
+    /// area; `None` when the linear program has no bounded vertex (a degenerate star).
+    fn best_position(&self, v: usize, points: &[Point]) -> Option<(Point, f64)> {
+        // Doubled area of (v, a, b) = cross(a, b) + cross(v, a − b) = c + g·v.
+        let cons: Vec<(Point, f64)> = self.stars[v]
+            .iter()
+            .map(|&[a, b]| {
+                let (a, b) = (points[a as usize], points[b as usize]);
+                let d = a - b;
+                (Point::new(d.y, -d.x), a.perp_dot(b))
+            })
+            .collect();
+        // Work relative to the current position for conditioning.
+        let o = points[v];
+        let cons: Vec<(Point, f64)> = cons.iter().map(|&(g, c)| (g, c + g.dot(o))).collect();
+        let scale = cons
+            .iter()
+            .map(|(g, c)| g.length_squared().max(c.abs()))
+            .fold(0.0f64, f64::max);
+        if scale <= 0.0 || !scale.is_finite() {
+            return None;
+        }
+        let eps = 1e-12 * scale;
+        let mut best: Option<(Point, f64)> = None;
+        let k = cons.len();
+        for i in 0..k {
+            for j in i + 1..k {
+                for l in j + 1..k {
+                    // z − g·x = c for the three constraints: unknowns (x, y, z).
+                    let rows = [cons[i], cons[j], cons[l]];
+                    let m = rows.map(|(g, c)| [-g.x, -g.y, 1.0, c]);
+                    let Some((x, y, z)) = solve3(&m) else {
+                        continue;
+                    };
+                    let p = Point::new(x, y);
+                    if best.is_none_or(|b| z > b.1)
+                        && cons.iter().all(|&(g, c)| z <= c + g.dot(p) + eps)
+                    {
+                        best = Some((p, z));
+                    }
+                }
+            }
+        }
+        best.map(|(p, z)| (o + p, z))
+    }
+}
+
+/// A triangle whose quality fell below this fraction of its quality before the mapping is
+/// improved by [`Untangler::improve`].
+const DISTORTED: f64 = 0.5;
+/// Sweeps of [`Untangler::improve`].
+const IMPROVE_SWEEPS: usize = 12;
+
+/// Shape quality of a triangle: `4√3 · area / Σ edge²`, 1 for an equilateral triangle, 0 for a
+/// degenerate one, negative when inverted.
+fn quality(t: &[u32; 3], p: &[Point]) -> f64 {
+    let [a, b, c] = t.map(|v| p[v as usize]);
+    let twice_area = (b - a).perp_dot(c - a);
+    let sum = (b - a).length_squared() + (c - b).length_squared() + (a - c).length_squared();
+    if sum > 0.0 {
+        2.0 * 3f64.sqrt() * twice_area / sum
+    } else {
+        0.0
+    }
+}
+
+/// Solves the 3×3 system with augmented rows `[a, b, c | d]` by Cramer's rule; `None` when
+/// (nearly) singular.
+fn solve3(m: &[[f64; 4]; 3]) -> Option<(f64, f64, f64)> {
+    let det3 = |c0: usize, c1: usize, c2: usize| {
+        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1])
+            - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+    };
+    let d = det3(0, 1, 2);
+    let norm = m
+        .iter()
+        .flat_map(|r| r[..3].iter())
+        .fold(0.0f64, |a, &x| a.max(x.abs()));
+    if d.abs() <= 1e-12 * norm * norm * norm || !d.is_finite() {
+        return None;
+    }
+    Some((det3(3, 1, 2) / d, det3(0, 3, 2) / d, det3(0, 1, 3) / d))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::count_inverted;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    /// A square fan around a centre vertex 4, corners fixed.
+    fn fan() -> (Vec<[u32; 3]>, Vec<bool>) {
+        let tris = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+        (tris, vec![true, true, true, true, false])
+    }
+
+    fn folded(t: &[u32; 3], pts: &[Point]) -> bool {
+        crate::geometry::orient2d(pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]) <= 0.0
+    }
+
+    #[test]
+    fn a_vertex_pushed_outside_its_star_comes_back_to_the_centre() {
+        let (tris, fixed) = fan();
+        let mut pts = vec![p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.), p(3., 1.)];
+        assert!(count_inverted(&tris, &pts) > 0);
+        let u = Untangler::new(&tris, &fixed);
+        assert!(u.untangle(&tris, &mut pts, folded));
+        assert_eq!(count_inverted(&tris, &pts), 0);
+        // Max-min area of a square's fan: the centre.
+        assert!(pts[4].distance(p(1., 1.)) < 1e-9);
+    }
+
+    #[test]
+    fn fixed_vertices_never_move_and_impossible_stars_are_reported() {
+        let (tris, fixed) = fan();
+        // A bow-tie ring: no position of vertex 4 makes all four triangles positive.
+        let mut pts = vec![p(0., 0.), p(2., 0.), p(0., 2.), p(2., 2.), p(1., 1.)];
+        let before = pts.clone();
+        let u = Untangler::new(&tris, &fixed);
+        assert!(!u.untangle(&tris, &mut pts, folded));
+        assert_eq!(&pts[..4], &before[..4]);
+    }
+
+    #[test]
+    fn improving_restores_a_squashed_star_and_leaves_similarities_alone() {
+        let (tris, fixed) = fan();
+        let rest = vec![p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.), p(1., 1.)];
+        let u = Untangler::new(&tris, &fixed);
+        // A similarity of the rest mesh: nothing moves.
+        let sim: Vec<Point> = rest
+            .iter()
+            .map(|&q| p(-q.y, q.x) * 3.0 + p(5., 1.))
+            .collect();
+        let mut same = sim.clone();
+        u.improve(&tris, &rest, &mut same);
+        assert_eq!(same, sim);
+        // The centre pushed next to a side: valid but thin; it comes back.
+        let mut squashed = rest.clone();
+        squashed[4] = p(1.0, 0.01);
+        let worst = |v: &[Point]| {
+            tris.iter()
+                .map(|t| quality(t, v))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let before = worst(&squashed);
+        u.improve(&tris, &rest, &mut squashed);
+        assert!(worst(&squashed) > 2.0 * before, "{squashed:?}");
+        assert_eq!(count_inverted(&tris, &squashed), 0);
+        assert_eq!(&squashed[..4], &rest[..4]);
+    }
+
+    #[test]
+    fn a_chain_of_free_vertices_is_untangled_through_its_neighbours() {
+        // A 4×4 grid of squares, each split in two; the interior vertices are free and two of
+        // them are thrown across each other.
+        let n = 5usize;
+        let id = |i: usize, j: usize| (j * n + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let mut pts: Vec<Point> = (0..n * n)
+            .map(|k| p((k % n) as f64, (k / n) as f64))
+            .collect();
+        let fixed: Vec<bool> = (0..n * n)
+            .map(|k| {
+                let (i, j) = (k % n, k / n);
+                i == 0 || j == 0 || i == n - 1 || j == n - 1
+            })
+            .collect();
+        pts[id(1, 1) as usize] = p(3.2, 2.9);
+        pts[id(3, 2) as usize] = p(0.8, 1.1);
+        assert!(count_inverted(&tris, &pts) > 0);
+        let u = Untangler::new(&tris, &fixed);
+        assert!(u.untangle(&tris, &mut pts, folded));
+        assert_eq!(count_inverted(&tris, &pts), 0);
+    }
+}
