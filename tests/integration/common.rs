@@ -29,31 +29,11 @@ pub(crate) fn pairs() -> Vec<(String, PathBuf, PathBuf)> {
     v
 }
 
-/// Fixture pairs and directions (`from_target`) that the composite mapping cannot yet carry
-/// flip-free: `build` must fail on them with an input error naming curves (never a panic, never
-/// a folded mesh). A pair that starts mapping fails the test until it is taken off this list.
-pub(crate) const KNOWN_MAPPING_FAILURES: &[(&str, bool)] = &[
-    ("dancer", false),
-    ("dancer", true),
-    ("leaf-to-butterfly", false),
-    ("u-to-s", false),
-    ("u-to-s", true),
-];
-
-/// Whether `name` in direction `from_target` is a known mapping failure.
-pub(crate) fn known_failure(name: &str, from_target: bool) -> bool {
-    KNOWN_MAPPING_FAILURES.contains(&(name, from_target))
-}
-
-/// Every fixture pair with a direction that maps: the source direction unless it is a known
-/// failure, else from the target; pairs known to fail both ways are left out.
-pub(crate) fn mappable_pairs() -> Vec<(String, PathBuf, PathBuf, bool)> {
+/// Every fixture pair in both directions: `(name, source, target, from_target)`.
+pub(crate) fn directions() -> Vec<(String, PathBuf, PathBuf, bool)> {
     pairs()
         .into_iter()
-        .filter_map(|(name, s, t)| {
-            let from_target = known_failure(&name, false);
-            (!(from_target && known_failure(&name, true))).then_some((name, s, t, from_target))
-        })
+        .flat_map(|(n, s, t)| [false, true].map(|d| (n.clone(), s.clone(), t.clone(), d)))
         .collect()
 }
 
