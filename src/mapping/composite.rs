@@ -241,14 +241,20 @@ fn walk(
         maps += 1;
         let t1 = if t + h >= 1.0 - 1e-12 { 1.0 } else { t + h };
         model.curves_at(t1, &mut curves);
-        let ok = {
+        let crossing = {
             let refs: Vec<CurveRef<'_>> = curves
                 .iter()
                 .zip(pairs)
                 .map(|(c, p)| (c.as_slice(), p.closed))
                 .collect();
-            crossing_curves(&refs).is_empty()
-        } && {
+            !crossing_curves(&refs).is_empty()
+        };
+        // Curves that cross at t1 block this path whatever the step: the walk must pass t1.
+        if crossing {
+            stats.rejected_steps += 1;
+            return Err(failure(model, pairs, t1, &mut curves, ""));
+        }
+        let ok = {
             next.copy_from_slice(&current);
             for (c, pts) in tri.curves.iter().zip(&curves) {
                 for (&v, &q) in c.vertices.iter().zip(pts) {
