@@ -1,6 +1,6 @@
 //! Lists the triangles that invert in any frame of the disc interpolation of each fixture, with
 //! their smallest angle in the source and target meshes. Run:
-//! `cargo run --release --example inverted`.
+//! `cargo run --release --example inverted [DENSITY]`.
 
 use std::path::Path;
 
@@ -28,6 +28,10 @@ fn main() {
         for from_target in [false, true] {
             let mut opts = MorphOptions::default();
             opts.from_target = from_target;
+            opts.density = std::env::args()
+                .nth(1)
+                .and_then(|d| d.parse().ok())
+                .unwrap_or(1.0);
             let Ok(c) = build(&s, &t, &opts) else {
                 continue;
             };
