@@ -265,8 +265,22 @@ impl Binding {
             super::flatten_tolerance(scene.view_box, scene.size)
         };
         let locator = PointLocator::new(mesh_vertices, triangles)?;
+        // Half the mesh's mean edge length: straight artwork segments bend with the mesh.
+        let (sum, count) = triangles.iter().fold((0.0, 0usize), |(s, c), t| {
+            let e = |a: u32, b: u32| mesh_vertices[a as usize].distance(mesh_vertices[b as usize]);
+            (s + e(t[0], t[1]) + e(t[1], t[2]) + e(t[2], t[0]), c + 3)
+        });
+        let max_segment = if count > 0 && sum > 0.0 {
+            0.5 * sum / count as f64
+        } else {
+            f64::INFINITY
+        };
+        let resolution = Resolution {
+            tolerance,
+            max_segment,
+        };
         let mut items = Vec::new();
-        bind_items(&scene.root.children, &locator, tolerance, &mut items);
+        bind_items(&scene.root.children, &locator, resolution, &mut items);
         Ok(Binding {
             scene: scene.clone(),
             triangles: triangles.to_vec(),
@@ -295,7 +309,7 @@ impl Binding {
     }
 }
 
-fn bind_items(items: &[Item], locator: &PointLocator, tol: f64, out: &mut Vec<BoundItem>) {
+fn bind_items(items: &[Item], locator: &PointLocator, tol: Resolution, out: &mut Vec<BoundItem>) {
     for item in items {
         match item {
             Item::Group(g) => {
@@ -357,11 +371,32 @@ pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Op
     Some(frame * cut)
 }
 
-/// Flattens `path` to polylines within `tol` and locates every point.
-fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
+/// How finely artwork is flattened before it is bound: within `tolerance` of the exact curves,
+/// and with no segment longer than `max_segment`, so that straight segments bend with the mesh
+/// (a two-point segment across a bending mesh would stay straight).
+#[derive(Debug, Clone, Copy)]
+struct Resolution {
+    tolerance: f64,
+    max_segment: f64,
+}
+
+/// Appends the points that split the segment from `a` to `b` into pieces no longer than
+/// `max_len` (not `a` itself, not `b`); returns how many.
+fn split_segment(points: &mut Vec<Point>, a: Point, b: Point, max_len: f64) -> usize {
+    let n = (a.distance(b) / max_len).ceil();
+    if !(n > 1.0) || !n.is_finite() {
+        return 0;
+    }
+    let n = n.min(1e6) as usize;
+    points.extend((1..n).map(|k| a.lerp(b, k as f64 / n as f64)));
+    n - 1
+}
+
+/// Flattens `path` to polylines at resolution `tol` and locates every point.
+fn bind_path(path: &BezPath, locator: &PointLocator, tol: Resolution) -> BoundPath {
     let mut points: Vec<Point> = Vec::new();
     let mut subpaths: Vec<Subpath> = Vec::new();
-    kurbo::flatten(path, tol, |el| match el {
+    kurbo::flatten(path, tol.tolerance, |el| match el {
         PathEl::MoveTo(p) => {
             subpaths.push(Subpath {
                 start: points.len(),
@@ -371,13 +406,16 @@ fn bind_path(path: &BezPath, locator: &PointLocator, tol: f64) -> BoundPath {
             points.push(Point::new(p.x, p.y));
         }
         PathEl::LineTo(p) => {
-            if let Some(s) = subpaths.last_mut() {
-                s.len += 1;
-                points.push(Point::new(p.x, p.y));
+            if let (Some(s), Some(&last)) = (subpaths.last_mut(), points.last()) {
+                let q = Point::new(p.x, p.y);
+                s.len += split_segment(&mut points, last, q, tol.max_segment) + 1;
+                points.push(q);
             }
         }
         PathEl::ClosePath => {
-            if let Some(s) = subpaths.last_mut() {
+            if let (Some(s), Some(&last)) = (subpaths.last_mut(), points.last()) {
+                let first = points[s.start];
+                s.len += split_segment(&mut points, last, first, tol.max_segment);
                 s.closed = true;
             }
         }
@@ -432,6 +470,61 @@ pub(crate) mod tests {
         let m0 = glam::DMat2::from_cols(b - a, c - a);
         let m1 = glam::DMat2::from_cols(b2 - a2, c2 - a2);
         a2 + m1 * (m0.inverse() * (p - a))
+    }
+
+    #[test]
+    fn straight_segments_bend_with_the_mesh() {
+        // A long straight segment across a grid whose right half is bent: its flattened points
+        // must include interior ones at most half a mean edge apart, so the warp follows the
+        // mesh instead of keeping the segment straight between its warped ends.
+        let (pts, tris) = grid(8, 2, 80.0, 20.0);
+        let loc = PointLocator::new(&pts, &tris).unwrap();
+        let mut path = BezPath::new();
+        path.move_to((5.0, 10.0));
+        path.line_to((75.0, 10.0));
+        let bound = bind_path(
+            &path,
+            &loc,
+            Resolution {
+                tolerance: 0.1,
+                max_segment: 5.0,
+            },
+        );
+        assert_eq!(bound.subpaths[0].len, bound.locations.len());
+        assert!(
+            bound.locations.len() >= 15,
+            "{} points",
+            bound.locations.len()
+        );
+        let bent: Vec<Point> = pts
+            .iter()
+            .map(|p| Point::new(p.x, p.y + 0.01 * p.x * p.x))
+            .collect();
+        let warped: Vec<Point> = bound
+            .locations
+            .iter()
+            .map(|l| l.place(&tris, &bent))
+            .collect();
+        // The warped midpoint lies on the bent mesh, well off the chord between the warped ends.
+        let mid = warped[warped.len() / 2];
+        let chord = warped[0].lerp(*warped.last().unwrap(), 0.5);
+        assert!(chord.y - mid.y > 5.0, "mid {mid} chord {chord}");
+        // A closed square gets its closing edge split too.
+        let mut sq = BezPath::new();
+        sq.move_to((10.0, 5.0));
+        sq.line_to((30.0, 5.0));
+        sq.line_to((30.0, 15.0));
+        sq.close_path();
+        let b = bind_path(
+            &sq,
+            &loc,
+            Resolution {
+                tolerance: 0.1,
+                max_segment: 5.0,
+            },
+        );
+        assert!(b.subpaths[0].closed);
+        assert!(b.subpaths[0].len >= 4 + 2 + 4, "{}", b.subpaths[0].len);
     }
 
     #[test]
