@@ -384,7 +384,7 @@ struct Resolution {
 /// `max_len` (not `a` itself, not `b`); returns how many.
 fn split_segment(points: &mut Vec<Point>, a: Point, b: Point, max_len: f64) -> usize {
     let n = (a.distance(b) / max_len).ceil();
-    if !(n > 1.0) || !n.is_finite() {
+    if n.is_nan() || n <= 1.0 || !n.is_finite() {
         return 0;
     }
     let n = n.min(1e6) as usize;
