@@ -56,6 +56,9 @@ fn main() {
                 "   angle {a:7.3}°  shortest edge {e:.4}  fixed corners {}",
                 t.iter().filter(|v| fixed(**v)).count()
             );
+            if *a < 0.01 {
+                println!("      {:?}", t.map(|v| (v, tri.points[v as usize])));
+            }
         }
         let all_fixed = tri
             .triangles

@@ -10,7 +10,8 @@ use crate::geometry::{orient2d, Point};
 use crate::tolerance::Tolerances;
 use spade::handles::FixedVertexHandle;
 use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation as _,
+    AngleLimit, ConstrainedDelaunayTriangulation, Point2, PositionInTriangulation,
+    RefinementParameters, Triangulation as _,
 };
 use std::collections::BTreeSet;
 
@@ -89,10 +90,28 @@ pub(super) fn build(
         .with_max_additional_vertices(cap);
     // spade documents no panics for `refine`, but a failed point location panics inside it; keep
     // that from reaching the caller.
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(params)))
-        .map_err(|_| CdtError::Other("spade's Delaunay refinement failed".into()))?;
+    let result =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(params.clone())))
+            .map_err(|_| CdtError::Other("spade's Delaunay refinement failed".into()))?;
     if !result.refinement_complete {
         log::warn!("triangulation: refinement stopped at {cap} additional vertices");
+    }
+
+    // A chord — an edge joining two curve vertices that is not a curve edge — pins the
+    // triangles on it to the curves: their shape at every t is fixed by the curves alone, and
+    // where the curves bend across the chord (a star's narrow tip becoming part of a smooth
+    // outline) they must fold, whatever the mapping. Splitting every chord at its midpoint gives
+    // each triangle a free corner; the refinement then restores the angles.
+    for _ in 0..4 {
+        if split_chords(&mut cdt, count) == 0 {
+            break;
+        }
+        let again =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(params.clone())))
+                .map_err(|_| CdtError::Other("spade's Delaunay refinement failed".into()))?;
+        if !again.refinement_complete {
+            log::warn!("triangulation: refinement stopped at {cap} additional vertices");
+        }
     }
 
     // Refinement must not have split a curve edge: every curve vertex keeps its twin.
@@ -179,4 +198,60 @@ pub(super) fn build(
         triangles.push(t);
     }
     Ok((points, triangles))
+}
+
+/// Inserts the midpoint of every chord (an edge between two curve vertices, the first
+/// `curve_vertices` of the triangulation, that is not a constraint); returns how many. A midpoint
+/// closer than a fifth of the chord's half-length to another vertex or edge of the triangle it
+/// lands in would only make a sliver, and is skipped.
+fn split_chords(cdt: &mut Cdt, curve_vertices: usize) -> usize {
+    let chords: Vec<(Point, f64)> = cdt
+        .undirected_edges()
+        .filter(|e| {
+            let [a, b] = e.vertices();
+            a.fix().index() < curve_vertices
+                && b.fix().index() < curve_vertices
+                && !cdt.is_constraint_edge(e.fix())
+        })
+        .map(|e| {
+            let [a, b] = e
+                .vertices()
+                .map(|v| v.position())
+                .map(|p| Point::new(p.x, p.y));
+            ((a + b) * 0.5, 0.5 * a.distance(b))
+        })
+        .collect();
+    let mut inserted = 0;
+    for (m, half) in chords {
+        let at = Point2::new(m.x, m.y);
+        let clear = match cdt.locate(at) {
+            PositionInTriangulation::OnFace(f) => {
+                let p = cdt
+                    .face(f)
+                    .vertices()
+                    .map(|v| v.position())
+                    .map(|q| Point::new(q.x, q.y));
+                (0..3).all(|k| {
+                    let (d, _) = crate::geometry::point_segment_distance(m, p[k], p[(k + 1) % 3]);
+                    // the chord itself passes through m: it is one of the edges at distance 0
+                    let is_chord = |q: Point| (q.distance(m) - half).abs() < 1e-6 * half;
+                    d >= 0.2 * half || (is_chord(p[k]) && is_chord(p[(k + 1) % 3]))
+                }) && p.iter().all(|q| q.distance(m) >= 0.2 * half)
+            }
+            // On a curve edge the insertion would split it (the correspondence needs it whole).
+            PositionInTriangulation::OnEdge(e) if cdt.is_constraint_edge(e.as_undirected()) => {
+                false
+            }
+            PositionInTriangulation::OnEdge(e) => {
+                let [a, b] = cdt.directed_edge(e).vertices().map(|v| v.position());
+                Point::new(a.x, a.y).distance(m) >= 0.2 * half
+                    && Point::new(b.x, b.y).distance(m) >= 0.2 * half
+            }
+            _ => false,
+        };
+        if clear && cdt.insert(at).is_ok() {
+            inserted += 1;
+        }
+    }
+    inserted
 }

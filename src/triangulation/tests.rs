@@ -255,3 +255,29 @@ fn regression_collinear_hull_vertices() {
     let tri = triangulate(&pairs, &tol, false).unwrap();
     assert_eq!(count_inverted(&tri.triangles, &tri.points), 0);
 }
+
+#[test]
+fn no_triangle_has_every_corner_on_a_curve() {
+    // A star's narrow tips: a plain CDT fills them with triangles of boundary vertices only,
+    // whose shape the curves alone decide (they fold when the star becomes an ellipse). Chords
+    // are split, so every triangle has a free corner.
+    let p = Point::new;
+    let star: Vec<Point> = (0..10)
+        .map(|k| {
+            let a = std::f64::consts::PI * k as f64 / 5.0;
+            let r = if k % 2 == 0 { 90.0 } else { 35.0 };
+            p(100.0 + r * a.sin(), 100.0 - r * a.cos())
+        })
+        .collect();
+    let pairs = vec![pair("boundary", true, subdivided(&star, 6))];
+    let tol = Tolerances::new(180.0, 1.0);
+    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let on_curve = pairs[0].source.len() as u32;
+    let all_fixed = tri
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| v < on_curve))
+        .count();
+    assert_eq!(all_fixed, 0);
+    assert_eq!(crate::mesh::count_inverted(&tri.triangles, &tri.points), 0);
+}
