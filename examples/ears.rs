@@ -2,8 +2,7 @@
 //! target shape is fixed by the curves alone), with their signed area at both ends.
 //! Run: `cargo run --release --example ears -- SRC.svg TGT.svg`.
 
-use crmorph::compatible::common_tolerances;
-use crmorph::correspondence::{correspond_all, CorrespondenceOptions};
+use crmorph::compatible::{curve_pairs, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
 use crmorph::geometry::triangle_area;
 use crmorph::triangulation::triangulate;
@@ -13,16 +12,7 @@ fn main() {
     let o = ReadOptions::default();
     let s = Drawing::open(a[1].as_ref(), &o).unwrap();
     let t = Drawing::open(a[2].as_ref(), &o).unwrap();
-    let tol = common_tolerances(&s, &t, 1.0);
-    let pairs = correspond_all(
-        &s.file,
-        &s.controls,
-        &t.file,
-        &t.controls,
-        &tol,
-        &CorrespondenceOptions::default(),
-    )
-    .unwrap();
+    let (tol, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
     let tri = triangulate(&pairs, &tol, false).unwrap();
     let curve_count: usize = pairs.iter().map(|p| p.source.len()).sum();
     let target: Vec<_> = pairs

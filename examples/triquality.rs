@@ -3,8 +3,7 @@
 
 use std::path::Path;
 
-use crmorph::compatible::common_tolerances;
-use crmorph::correspondence::{correspond_all, CorrespondenceOptions};
+use crmorph::compatible::{curve_pairs, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
 use crmorph::triangulation::triangulate;
 
@@ -15,16 +14,7 @@ fn main() {
         let o = ReadOptions::default();
         let s = Drawing::open(&d.join("source.svg"), &o).unwrap();
         let t = Drawing::open(&d.join("target.svg"), &o).unwrap();
-        let tol = common_tolerances(&s, &t, 1.0);
-        let pairs = correspond_all(
-            &s.file,
-            &s.controls,
-            &t.file,
-            &t.controls,
-            &tol,
-            &CorrespondenceOptions::default(),
-        )
-        .unwrap();
+        let (tol, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
         let curve_vertices: usize = pairs.iter().map(|p| p.source.len()).sum();
         let tri = triangulate(&pairs, &tol, false).unwrap();
         let mut worst: Vec<(f64, f64, [u32; 3])> = tri

@@ -64,8 +64,13 @@ fn name_files(e: Error, source: &Drawing, target: &Drawing, from_target: bool) -
     }
 }
 
-/// Builds compatible triangulations of two drawings (§3, §5).
-pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
+/// The common tolerances and the corresponded curve pairs of two drawings (§3): the first stage
+/// of [`build`], on its own for tools that look at the curves.
+pub fn curve_pairs(
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+) -> Result<(Tolerances, Vec<CurvePair>)> {
     let tol = common_tolerances(source, target, opts.density);
     let pairs = correspond_all(
         &source.file,
@@ -75,6 +80,12 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
         &tol,
         &opts.correspondence,
     )?;
+    Ok((tol, pairs))
+}
+
+/// Builds compatible triangulations of two drawings (§3, §5).
+pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
+    let (tol, pairs) = curve_pairs(source, target, opts)?;
     let fix = |e| name_files(e, source, target, opts.from_target);
     let tri = triangulate(&pairs, &tol, opts.from_target).map_err(fix)?;
     let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;
