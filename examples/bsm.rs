@@ -15,7 +15,7 @@ fn main() {
     let o = ReadOptions::default();
     let s = Drawing::open(&dir.join("source.svg"), &o).unwrap();
     let t = Drawing::open(&dir.join("target.svg"), &o).unwrap();
-    let (tol, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
+    let (_, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
     let model = ShapeModel::new(&pairs, false).unwrap();
     let mut svg = String::from("<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 2400 1000' width='2400' height='1000'><rect width='2400' height='1000' fill='white'/>");
     let mut out = Vec::new();
