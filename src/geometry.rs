@@ -47,6 +47,54 @@ pub fn centroid(points: &[Point]) -> Point {
     points.iter().copied().sum::<Point>() / points.len() as f64
 }
 
+/// The sums behind a least-squares similarity (2D Procrustes) carrying the point list `a` onto
+/// `b` (equal lengths): both centroids, and over the centred points `Σ‖a‖²`, `Σ‖b‖²`,
+/// `Σ a·b` and `Σ a×b`. One place for the fit that correspondence, the shape model and the
+/// tests use.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimilarityFit {
+    /// Centroid of `a`.
+    pub from_centroid: Point,
+    /// Centroid of `b`.
+    pub to_centroid: Point,
+    /// `Σ ‖a_i − ā‖²`.
+    pub from_spread: f64,
+    /// `Σ ‖b_i − b̄‖²`.
+    pub to_spread: f64,
+    /// `Σ (a_i − ā)·(b_i − b̄)`.
+    pub dot: f64,
+    /// `Σ (a_i − ā)×(b_i − b̄)`.
+    pub cross: f64,
+}
+
+impl SimilarityFit {
+    /// The fit of `a` onto `b` (pairs beyond the shorter list are ignored).
+    pub fn new(a: &[Point], b: &[Point]) -> Self {
+        let (ca, cb) = (centroid(a), centroid(b));
+        let mut f = SimilarityFit {
+            from_centroid: ca,
+            to_centroid: cb,
+            from_spread: 0.0,
+            to_spread: 0.0,
+            dot: 0.0,
+            cross: 0.0,
+        };
+        for (&p, &q) in a.iter().zip(b) {
+            let (p, q) = (p - ca, q - cb);
+            f.from_spread += p.length_squared();
+            f.to_spread += q.length_squared();
+            f.dot += p.dot(q);
+            f.cross += p.perp_dot(q);
+        }
+        f
+    }
+
+    /// The best-fit rotation angle, in (−π, π].
+    pub fn rotation(&self) -> f64 {
+        self.cross.atan2(self.dot)
+    }
+}
+
 /// Total length of a polyline, including the closing edge when `closed`.
 pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
     let mut len: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();

@@ -8,7 +8,7 @@
 //! (circle ↔ ellipse).
 
 use super::measure::Polyline;
-use crate::geometry::{centroid, polygon_area, Point};
+use crate::geometry::{polygon_area, Point, SimilarityFit};
 
 /// Number of arc-length samples used to compare two curves' shapes.
 pub(crate) const SHAPE_SAMPLES: usize = 64;
@@ -17,34 +17,22 @@ pub(crate) const SHAPE_SAMPLES: usize = 64;
 /// onto `b`: `0` for similar point lists, `1` when the best fit is to collapse `a` to `b`'s
 /// centroid. Equal lengths assumed.
 pub(crate) fn similarity_residual(a: &[Point], b: &[Point]) -> f64 {
-    let (ca, cb) = (centroid(a), centroid(b));
-    let (mut aa, mut bb, mut dot, mut cross) = (0.0, 0.0, 0.0, 0.0);
-    for (&p, &q) in a.iter().zip(b) {
-        let (p, q) = (p - ca, q - cb);
-        aa += p.length_squared();
-        bb += q.length_squared();
-        dot += p.dot(q);
-        cross += p.perp_dot(q);
-    }
+    let f = SimilarityFit::new(a, b);
     relative(
-        bb - (dot * dot + cross * cross) / aa.max(f64::MIN_POSITIVE),
-        bb,
+        f.to_spread - (f.dot * f.dot + f.cross * f.cross) / f.from_spread.max(f64::MIN_POSITIVE),
+        f.to_spread,
     )
 }
 
 /// Relative residual of the best fit of `a` onto `b` by uniform scale and translation only (no
 /// rotation): the tie-breaker that prefers correspondences needing the least turning.
 pub(crate) fn unrotated_residual(a: &[Point], b: &[Point]) -> f64 {
-    let (ca, cb) = (centroid(a), centroid(b));
-    let (mut aa, mut bb, mut dot) = (0.0, 0.0, 0.0);
-    for (&p, &q) in a.iter().zip(b) {
-        let (p, q) = (p - ca, q - cb);
-        aa += p.length_squared();
-        bb += q.length_squared();
-        dot += p.dot(q);
-    }
-    let dot = dot.max(0.0);
-    relative(bb - dot * dot / aa.max(f64::MIN_POSITIVE), bb)
+    let f = SimilarityFit::new(a, b);
+    let dot = f.dot.max(0.0);
+    relative(
+        f.to_spread - dot * dot / f.from_spread.max(f64::MIN_POSITIVE),
+        f.to_spread,
+    )
 }
 
 fn relative(residual: f64, scale: f64) -> f64 {
@@ -84,37 +72,22 @@ pub(crate) const TURN_SLACK: f64 = 0.03;
 
 /// The best-fit rotation angle (radians, in (−π, π]) carrying the centred point list `a` onto `b`.
 pub(crate) fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
-    let (ca, cb) = (centroid(a), centroid(b));
-    let (mut dot, mut cross) = (0.0, 0.0);
-    for (&p, &q) in a.iter().zip(b) {
-        let (p, q) = (p - ca, q - cb);
-        dot += p.dot(q);
-        cross += p.perp_dot(q);
-    }
-    cross.atan2(dot)
+    SimilarityFit::new(a, b).rotation()
 }
 
 /// Where the least-squares similarity (rotation, uniform scale, translation) carrying `a` onto
 /// `b` takes `p`, and the RMS distance of `b` from its centroid (the scale to measure misfits
 /// in). Equal lengths assumed; a degenerate `a` maps everything to `b`'s centroid.
 pub(crate) fn similarity_apply(a: &[Point], b: &[Point], p: Point) -> (Point, f64) {
-    let (ca, cb) = (centroid(a), centroid(b));
-    let (mut aa, mut bb, mut dot, mut cross) = (0.0, 0.0, 0.0, 0.0);
-    for (&x, &y) in a.iter().zip(b) {
-        let (x, y) = (x - ca, y - cb);
-        aa += x.length_squared();
-        bb += y.length_squared();
-        dot += x.dot(y);
-        cross += x.perp_dot(y);
+    let f = SimilarityFit::new(a, b);
+    let spread = (f.to_spread / b.len().max(1) as f64).sqrt();
+    if f.from_spread <= 0.0 {
+        return (f.to_centroid, spread);
     }
-    let spread = (bb / b.len().max(1) as f64).sqrt();
-    if aa <= 0.0 {
-        return (cb, spread);
-    }
-    let (c, s) = (dot / aa, cross / aa);
-    let d = p - ca;
+    let (c, s) = (f.dot / f.from_spread, f.cross / f.from_spread);
+    let d = p - f.from_centroid;
     (
-        cb + Point::new(c * d.x - s * d.y, s * d.x + c * d.y),
+        f.to_centroid + Point::new(c * d.x - s * d.y, s * d.x + c * d.y),
         spread,
     )
 }

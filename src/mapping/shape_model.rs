@@ -55,13 +55,10 @@ pub struct ShapeModel {
     carried: Option<Carried>,
 }
 
-/// Angle of the rotation that best maps the centred point set `a` onto the centred set `b`
-/// (2D Procrustes), in (−π, π].
+/// Angle of the rotation that best maps the point set `a` onto `b` (2D Procrustes, about their
+/// centroids), in (−π, π].
 fn best_fit_rotation(a: &[Point], b: &[Point]) -> f64 {
-    let (s, c) = a.iter().zip(b).fold((0.0, 0.0), |(s, c), (p, q)| {
-        (s + p.perp_dot(*q), c + p.dot(*q))
-    });
-    s.atan2(c)
+    crate::geometry::SimilarityFit::new(a, b).rotation()
 }
 
 /// Turns beyond this (150°) are close enough to a half turn that their direction is ambiguous.

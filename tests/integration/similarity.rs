@@ -29,22 +29,14 @@ fn similarity(angle_deg: f64, scale: f64, shift: Point) -> impl Fn(Point) -> Poi
 
 /// Best-fit similarity angle from `a` to `b` (centred), and the largest residual.
 fn fit(a: &[Point], b: &[Point]) -> (f64, f64, f64) {
-    let ca = crmorph::geometry::centroid(a);
-    let cb = crmorph::geometry::centroid(b);
-    let (mut dot, mut cross, mut norm) = (0.0, 0.0, 0.0);
-    for (p, q) in a.iter().zip(b) {
-        let (u, v) = (*p - ca, *q - cb);
-        dot += u.dot(v);
-        cross += u.perp_dot(v);
-        norm += u.length_squared();
-    }
-    let angle = cross.atan2(dot);
-    let scale = (dot * dot + cross * cross).sqrt() / norm;
+    let f = crmorph::geometry::SimilarityFit::new(a, b);
+    let angle = f.rotation();
+    let scale = f.dot.hypot(f.cross) / f.from_spread;
     let (s, c) = angle.sin_cos();
     let mut worst: f64 = 0.0;
     for (p, q) in a.iter().zip(b) {
-        let u = *p - ca;
-        let r = Point::new(c * u.x - s * u.y, s * u.x + c * u.y) * scale + cb;
+        let u = *p - f.from_centroid;
+        let r = Point::new(c * u.x - s * u.y, s * u.x + c * u.y) * scale + f.to_centroid;
         worst = worst.max(r.distance(*q));
     }
     (angle, scale, worst)
