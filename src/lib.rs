@@ -33,6 +33,7 @@ pub mod compatible;
 pub mod correspondence;
 pub mod drawing;
 pub mod error;
+pub mod export;
 pub mod geometry;
 pub mod inspect;
 pub mod json;

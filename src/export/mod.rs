@@ -1,0 +1,7 @@
+//! Exporting a morph as an animation: the shared [`Timeline`] (frame times, easing, playback),
+//! and the encoders that turn rendered frames into files users play (the end of DESIGN.md §2:
+//! frames → GIF · APNG · HTML preview; the animated SVG writer lives in [`crate::render`]).
+
+pub mod timeline;
+
+pub use timeline::{Easing, Playback, Timeline};
