@@ -7,10 +7,14 @@
 //! with usvg, so the two outputs cannot drift apart) and blends pixels; the SVG path expresses the
 //! blend as a filter (see [`svg_frame`]).
 
+pub mod animated;
+mod fit;
 mod raster;
 pub mod svg_frame;
+mod tree;
 
-pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba};
+pub use animated::animated_svg;
+pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba, svg_png};
 pub use svg_frame::{frame_svg, scene_svg};
 
 use crate::artwork::{Rgba, Scene};

@@ -6,7 +6,7 @@
 //! (a convex combination of valid pixels is valid) and gives exactly what the SVG frame's
 //! arithmetic `feComposite` computes.
 
-use super::svg_frame::scene_svg;
+use super::svg_frame::{scene_svg, side_svg};
 use super::FrameOptions;
 use crate::artwork::Scene;
 use crate::error::{Error, Result};
@@ -15,13 +15,6 @@ use tiny_skia::{Pixmap, PixmapPaint, Transform};
 /// Renders one scene alone on a transparent pixmap of `opts.size` showing `opts.view_box`
 /// (`opts.background` is ignored here; frames apply it after blending).
 pub fn render_scene(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
-    let (w, h) = opts.size;
-    let mut pixmap = Pixmap::new(w, h).ok_or_else(|| {
-        Error::input(
-            "<output>",
-            format!("cannot render a {w}×{h} image: the size must be positive and not huge"),
-        )
-    })?;
     let svg = scene_svg(
         scene,
         &FrameOptions {
@@ -29,7 +22,24 @@ pub fn render_scene(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
             ..*opts
         },
     )?;
-    let tree = usvg::Tree::from_str(&svg, &usvg::Options::default())
+    render_svg(&svg, opts)
+}
+
+/// Renders one warped side of an in-between frame exactly as the SVG frame writes it (outlines
+/// fitted with curves), so raster and SVG frames show the same geometry.
+pub(crate) fn render_side(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
+    render_svg(&side_svg(scene, opts)?, opts)
+}
+
+fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
+    let (w, h) = opts.size;
+    let mut pixmap = Pixmap::new(w, h).ok_or_else(|| {
+        Error::input(
+            "<output>",
+            format!("cannot render a {w}×{h} image: the size must be positive and not huge"),
+        )
+    })?;
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
         .map_err(|e| Error::internal(format!("crmorph wrote an SVG usvg cannot read: {e}")))?;
     resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
     Ok(pixmap)
@@ -45,8 +55,8 @@ pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions)
     } else if t == 1.0 {
         render_scene(target, opts)?
     } else {
-        let mut s = render_scene(source, opts)?;
-        let d = render_scene(target, opts)?;
+        let mut s = render_side(source, opts)?;
+        let d = render_side(target, opts)?;
         blend_into(&mut s, &d, t);
         s
     };
@@ -106,4 +116,23 @@ pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
     for (x, y) in s.data_mut().iter_mut().zip(d.data()) {
         *x = (a * *x as f32 + b * *y as f32).round().clamp(0.0, 255.0) as u8;
     }
+}
+
+/// Any SVG document (for example [`crate::inspect::inspect_svg`]'s picture) rendered to PNG at
+/// `width` pixels wide (default: its own width), height in proportion.
+pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+        .map_err(|e| Error::internal(format!("cannot read the SVG to render: {e}")))?;
+    let size = tree.size();
+    let w = width.map(|w| w as f32).unwrap_or(size.width()).max(1.0);
+    let scale = w / size.width().max(1e-6);
+    let h = (size.height() * scale).round().max(1.0);
+    let mut pixmap = Pixmap::new(w.round() as u32, h as u32)
+        .ok_or_else(|| Error::internal(format!("cannot render a {w}×{h} image")))?;
+    resvg::render(
+        &tree,
+        Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    encode_png(&pixmap)
 }

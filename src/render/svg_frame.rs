@@ -22,43 +22,98 @@
 //! is no filter at all: the frame is the one drawing, rendering exactly as the input.
 //!
 //! Output is deterministic: elements in paint order, generated ids numbered in that order,
-//! coordinates rounded to 1/100 px at the output size.
+//! coordinates rounded to 1/100 px at the output size. Warped (flattened) outlines are fitted
+//! with cubic curves within a tenth of a pixel ([`super::fit`]); the exact input at t = 0 and
+//! t = 1 is written as it is.
+//!
+//! Frames are built as element trees ([`super::tree`]); the animated SVG
+//! ([`super::animated`]) builds one per keyframe in [`Mode::Keyframe`] and animates what differs.
 
+use super::tree::{fixed, matrix, Builder, Node, NumFormat, Value};
 use super::FrameOptions;
 use crate::artwork::{
     Gradient, GradientKind, Group, ImageItem, Item, LineCap, LineJoin, Paint, PathItem, Rgba,
     Scene, Spread, Stroke,
 };
-use crate::error::{Error, Result};
-use crate::geometry::Point;
-use kurbo::{Affine, PathEl};
-use quick_xml::events::{BytesEnd, BytesStart, Event};
-use quick_xml::Writer;
+use crate::error::Result;
+use kurbo::Affine;
 
 /// One drawing alone as a standalone SVG (what frames t = 0 and t = 1 are).
 pub fn scene_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
-    let mut doc = Document::new(opts);
-    doc.start_root(opts);
-    let mut defs = Xml::new();
-    let mut body = Xml::new();
-    doc.side(scene, "a", &mut defs, &mut body);
-    doc.finish(defs, body)
+    scene_tree(scene, opts).to_svg_string()
 }
 
 /// The frame at `t` blending the warped `source` and `target` scenes (see the module docs for
 /// how). `t` is clamped to [0, 1]; at the ends the frame is [`scene_svg`] of that side.
 pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<String> {
+    frame_tree(source, target, t, opts, Mode::Still).to_svg_string()
+}
+
+/// How far (in output pixels) a curve fitted to warped artwork may stray from the warped
+/// polyline. The polyline is itself within a quarter pixel of the exact warp; a tenth more keeps
+/// SVG frames visually identical to the raster frames rendered from the polylines.
+const FIT_PIXELS: f64 = 0.1;
+
+/// The same for animation keyframes, whose geometry is only ever seen moving: a quarter pixel.
+const FIT_PIXELS_IN_MOTION: f64 = 0.25;
+
+/// What a frame tree is built for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// A standalone frame: the ends are the plain input drawings, in-betweens blended.
+    Still,
+    /// An animation keyframe: always the blend (so every keyframe has the same elements), and
+    /// attributes that a still frame omits at their default value always written.
+    Keyframe,
+}
+
+/// One warped side of an in-between frame alone, outlines fitted as in [`frame_svg`], without
+/// background (for the raster blend).
+pub(crate) fn side_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
+    let opts = FrameOptions {
+        background: None,
+        ..*opts
+    };
+    let mut doc = Document::new(&opts, Some(FIT_PIXELS / opts.scale()), false);
+    let mut defs = Builder::new();
+    let mut body = Builder::new();
+    doc.side(scene, "a", &mut defs, &mut body);
+    doc.finish(&opts, defs, body).to_svg_string()
+}
+
+/// One drawing alone, as a tree.
+pub(crate) fn scene_tree(scene: &Scene, opts: &FrameOptions) -> Node {
+    let mut doc = Document::new(opts, None, false);
+    let mut defs = Builder::new();
+    let mut body = Builder::new();
+    doc.side(scene, "a", &mut defs, &mut body);
+    doc.finish(opts, defs, body)
+}
+
+/// The frame at `t` as a tree (see [`frame_svg`]; [`Mode::Keyframe`] blends at every t).
+pub(crate) fn frame_tree(
+    source: &Scene,
+    target: &Scene,
+    t: f64,
+    opts: &FrameOptions,
+    mode: Mode,
+) -> Node {
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
-    if t == 0.0 {
-        return scene_svg(source, opts);
+    if mode == Mode::Still {
+        if t == 0.0 {
+            return scene_tree(source, opts);
+        }
+        if t == 1.0 {
+            return scene_tree(target, opts);
+        }
     }
-    if t == 1.0 {
-        return scene_svg(target, opts);
-    }
-    let mut doc = Document::new(opts);
-    doc.start_root(opts);
-    let mut defs = Xml::new();
-    let mut body = Xml::new();
+    let tol = match mode {
+        Mode::Still => FIT_PIXELS,
+        Mode::Keyframe => FIT_PIXELS_IN_MOTION,
+    } / opts.scale();
+    let mut doc = Document::new(opts, Some(tol), mode == Mode::Keyframe);
+    let mut defs = Builder::new();
+    let mut body = Builder::new();
     let (lo, hi) = opts.view_box;
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
     // The target's shift D: at least the view's width, and a whole number of output pixels so
@@ -72,23 +127,22 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     } else {
         w
     };
-    let decimals = doc.decimals;
-    let n = |x: f64| fixed(x, decimals);
+    let n = |x: f64| Value::num(x, NumFormat::Fixed(doc.decimals));
     // The clip and filter definitions.
-    defs.open("clipPath", &[("id", "crmorph-view".into())]);
+    defs.open("clipPath", vec![("id", "crmorph-view".into())]);
     defs.empty(
         "rect",
-        &[
+        vec![
             ("x", n(lo.x)),
             ("y", n(lo.y)),
             ("width", n(w)),
             ("height", n(h)),
         ],
     );
-    defs.close("clipPath");
+    defs.close();
     defs.open(
         "filter",
-        &[
+        vec![
             ("id", "crmorph-blend".into()),
             ("filterUnits", "userSpaceOnUse".into()),
             ("x", n(lo.x)),
@@ -100,7 +154,7 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     );
     defs.empty(
         "feOffset",
-        &[
+        vec![
             ("in", "SourceGraphic".into()),
             ("dx", n(-shift)),
             ("dy", "0".into()),
@@ -109,13 +163,13 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
     );
     defs.empty(
         "feComposite",
-        &[
+        vec![
             ("in", "SourceGraphic".into()),
             ("in2", "target".into()),
             ("operator", "arithmetic".into()),
             ("k1", "0".into()),
-            ("k2", sig(1.0 - t)),
-            ("k3", sig(t)),
+            ("k2", Value::num(1.0 - t, NumFormat::Sig)),
+            ("k3", Value::num(t, NumFormat::Sig)),
             ("k4", "0".into()),
             ("x", n(lo.x)),
             ("y", n(lo.y)),
@@ -123,191 +177,149 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
             ("height", n(h)),
         ],
     );
-    defs.close("filter");
-    body.open("g", &[("filter", "url(#crmorph-blend)".into())]);
-    body.open("g", &[("clip-path", "url(#crmorph-view)".into())]);
+    defs.close();
+    body.open("g", vec![("filter", "url(#crmorph-blend)".into())]);
+    body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
     doc.side(source, "s", &mut defs, &mut body);
-    body.close("g");
-    body.open("g", &[("transform", format!("translate({} 0)", n(shift)))]);
-    body.open("g", &[("clip-path", "url(#crmorph-view)".into())]);
+    body.close();
+    body.open(
+        "g",
+        vec![(
+            "transform",
+            format!("translate({} 0)", fixed(shift, doc.decimals)).into(),
+        )],
+    );
+    body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
     doc.side(target, "t", &mut defs, &mut body);
-    body.close("g");
-    body.close("g");
-    body.close("g");
-    doc.finish(defs, body)
+    body.close();
+    body.close();
+    body.close();
+    doc.finish(opts, defs, body)
 }
 
-/// A small quick-xml writer that remembers a write failure instead of returning it at every call.
-struct Xml {
-    w: Writer<Vec<u8>>,
-    failed: bool,
-}
+type Attrs = Vec<(&'static str, Value)>;
 
-impl Xml {
-    fn new() -> Self {
-        Xml {
-            w: Writer::new(Vec::new()),
-            failed: false,
-        }
-    }
-
-    fn start(name: &str, attrs: &[(&str, String)]) -> BytesStart<'static> {
-        let mut e = BytesStart::new(name.to_string());
-        for (k, v) in attrs {
-            e.push_attribute((*k, v.as_str()));
-        }
-        e
-    }
-
-    fn open(&mut self, name: &str, attrs: &[(&str, String)]) {
-        let e = Self::start(name, attrs);
-        self.failed |= self.w.write_event(Event::Start(e)).is_err();
-    }
-
-    fn empty(&mut self, name: &str, attrs: &[(&str, String)]) {
-        let e = Self::start(name, attrs);
-        self.failed |= self.w.write_event(Event::Empty(e)).is_err();
-    }
-
-    fn close(&mut self, name: &str) {
-        self.failed |= self
-            .w
-            .write_event(Event::End(BytesEnd::new(name.to_string())))
-            .is_err();
-    }
-
-    fn raw(&mut self, text: &str) {
-        use std::io::Write;
-        self.failed |= self.w.get_mut().write_all(text.as_bytes()).is_err();
-    }
-}
-
-/// Shared state of one output document: number precision and generated-id counters.
+/// Shared state of one output document: number precision, fitting and generated-id counters.
 struct Document {
-    root: Xml,
     decimals: usize,
-    background: Option<Rgba>,
-    view_box: (Point, Point),
+    /// Curve-fitting tolerance for warped outlines (user units), `None` for the exact input.
+    fit: Option<f64>,
+    /// Write every attribute that can vary between frames, even at its default value.
+    uniform: bool,
     next_id: usize,
 }
 
 impl Document {
-    fn new(opts: &FrameOptions) -> Self {
-        let d = opts.view_box.1 - opts.view_box.0;
-        let scale = (opts.size.0 as f64 / d.x).max(opts.size.1 as f64 / d.y);
+    fn new(opts: &FrameOptions, fit: Option<f64>, uniform: bool) -> Self {
         // 1/100 px in user units, as a count of decimals.
-        let step = 0.01 / scale;
+        let step = 0.01 / opts.scale();
         let decimals = if step.is_finite() && step > 0.0 {
             (-step.log10()).ceil().clamp(0.0, 12.0) as usize
         } else {
             3
         };
         Document {
-            root: Xml::new(),
             decimals,
-            background: opts.background,
-            view_box: opts.view_box,
+            fit,
+            uniform,
             next_id: 0,
         }
     }
 
-    /// A coordinate rounded to the output's precision, without trailing zeros.
-    fn num(&self, x: f64) -> String {
-        fixed(x, self.decimals)
+    fn num(&self, x: f64) -> Value {
+        Value::num(x, NumFormat::Fixed(self.decimals))
     }
 
-    fn start_root(&mut self, opts: &FrameOptions) {
+    fn finish(self, opts: &FrameOptions, defs: Builder, body: Builder) -> Node {
         let (lo, hi) = opts.view_box;
-        let vb = format!(
-            "{} {} {} {}",
-            self.num(lo.x),
-            self.num(lo.y),
-            self.num(hi.x - lo.x),
-            self.num(hi.y - lo.y)
-        );
-        self.root.open(
+        let vb = [lo.x, lo.y, hi.x - lo.x, hi.y - lo.y]
+            .map(|x| fixed(x, self.decimals))
+            .join(" ");
+        let mut root = Node::new(
             "svg",
-            &[
+            vec![
                 ("xmlns", "http://www.w3.org/2000/svg".into()),
                 ("xmlns:xlink", "http://www.w3.org/1999/xlink".into()),
-                ("width", opts.size.0.to_string()),
-                ("height", opts.size.1.to_string()),
-                ("viewBox", vb),
+                ("width", opts.size.0.to_string().into()),
+                ("height", opts.size.1.to_string().into()),
+                ("viewBox", vb.into()),
             ],
         );
-    }
-
-    fn finish(mut self, defs: Xml, body: Xml) -> Result<String> {
-        let defs_bytes = defs.w.into_inner();
-        if !defs_bytes.is_empty() {
-            self.root.open("defs", &[]);
-            self.root
-                .raw(std::str::from_utf8(&defs_bytes).unwrap_or_default());
-            self.root.close("defs");
+        if !defs.is_empty() {
+            let mut d = Node::new("defs", Vec::new());
+            d.children = defs.finish();
+            root.children.push(d);
         }
-        if let Some(bg) = self.background {
-            let (lo, hi) = self.view_box;
+        if let Some(bg) = opts.background {
             let mut a = vec![
                 ("x", self.num(lo.x)),
                 ("y", self.num(lo.y)),
                 ("width", self.num(hi.x - lo.x)),
                 ("height", self.num(hi.y - lo.y)),
-                ("fill", hex(bg)),
+                ("fill", hex(bg).into()),
             ];
             if bg.a != 255 {
-                a.push(("fill-opacity", sig(bg.a as f64 / 255.0)));
+                a.push((
+                    "fill-opacity",
+                    Value::num(bg.a as f64 / 255.0, NumFormat::Sig),
+                ));
             }
-            self.root.empty("rect", &a);
+            root.children.push(Node::new("rect", a));
         }
-        let body_bytes = body.w.into_inner();
-        self.root
-            .raw(std::str::from_utf8(&body_bytes).unwrap_or_default());
-        self.root.close("svg");
-        if self.root.failed || defs.failed || body.failed {
-            return Err(Error::internal("writing the SVG frame failed"));
+        root.children.extend(body.finish());
+        root
+    }
+
+    fn path_value(&self, path: kurbo::BezPath, decimals: usize) -> Value {
+        Value::Path {
+            path,
+            decimals,
+            fit: self.fit,
         }
-        String::from_utf8(self.root.w.into_inner())
-            .map_err(|_| Error::internal("the SVG frame is not UTF-8"))
     }
 
     /// Writes one scene's artwork into `body`, its gradients into `defs`, with ids prefixed by
     /// `prefix` (so the two sides of a frame never share an id).
-    fn side(&mut self, scene: &Scene, prefix: &str, defs: &mut Xml, body: &mut Xml) {
+    fn side(&mut self, scene: &Scene, prefix: &str, defs: &mut Builder, body: &mut Builder) {
         let wrap = scene.root_transform != Affine::IDENTITY;
         if wrap {
-            body.open("g", &[("transform", matrix(scene.root_transform))]);
+            body.open(
+                "g",
+                vec![("transform", matrix(scene.root_transform).into())],
+            );
         }
         self.children(&scene.root, prefix, defs, body);
         if wrap {
-            body.close("g");
+            body.close();
         }
     }
 
-    fn children(&mut self, g: &Group, prefix: &str, defs: &mut Xml, body: &mut Xml) {
+    fn children(&mut self, g: &Group, prefix: &str, defs: &mut Builder, body: &mut Builder) {
         for c in &g.children {
             match c {
                 Item::Group(sub) => {
                     let mut a = Vec::new();
                     if sub.opacity != 1.0 {
-                        a.push(("opacity", sig(sub.opacity)));
+                        a.push(("opacity", Value::num(sub.opacity, NumFormat::Sig)));
                     }
                     if let Some(clip) = &sub.clip {
                         let id = format!("{prefix}{}", self.next_id);
                         self.next_id += 1;
-                        defs.open("clipPath", &[("id", id.clone())]);
+                        defs.open("clipPath", vec![("id", id.clone().into())]);
                         for shape in &clip.shapes {
-                            let mut sa = vec![("d", self.path_data(&shape.path, self.decimals))];
+                            let mut sa =
+                                vec![("d", self.path_value(shape.path.clone(), self.decimals))];
                             if shape.even_odd {
                                 sa.push(("clip-rule", "evenodd".into()));
                             }
-                            defs.empty("path", &sa);
+                            defs.empty("path", sa);
                         }
-                        defs.close("clipPath");
-                        a.push(("clip-path", format!("url(#{id})")));
+                        defs.close();
+                        a.push(("clip-path", format!("url(#{id})").into()));
                     }
-                    body.open("g", &a);
+                    body.open("g", a);
                     self.children(sub, prefix, defs, body);
-                    body.close("g");
+                    body.close();
                 }
                 Item::Path(p) => self.path(p, prefix, defs, body),
                 Item::Image(img) => self.image(img, body),
@@ -315,40 +327,47 @@ impl Document {
         }
     }
 
-    fn path(&mut self, p: &PathItem, prefix: &str, defs: &mut Xml, body: &mut Xml) {
+    fn path(&mut self, p: &PathItem, prefix: &str, defs: &mut Builder, body: &mut Builder) {
+        if p.path.elements().is_empty() {
+            return;
+        }
         // A shaped pen is drawn in its own frame: the outline mapped back into it, the frame as
-        // the element's transform, gradients re-expressed in it.
-        let frame = p
-            .stroke
-            .as_ref()
-            .and_then(|s| s.frame)
-            .filter(|f| f.determinant().is_finite() && f.determinant() != 0.0);
+        // the element's transform, gradients re-expressed in it. (A degenerate frame falls back
+        // to the identity, so keyframes keep their structure.)
+        let frame = p.stroke.as_ref().and_then(|s| s.frame).map(|f| {
+            if f.determinant().is_finite() && f.determinant() != 0.0 {
+                f
+            } else {
+                Affine::IDENTITY
+            }
+        });
         let (d, to_local) = match frame {
-            None => (self.path_data(&p.path, self.decimals), Affine::IDENTITY),
+            None => (
+                self.path_value(p.path.clone(), self.decimals),
+                Affine::IDENTITY,
+            ),
             Some(f) => {
                 let inv = f.inverse();
                 let [a, b, c, dd, _, _] = f.as_coeffs();
                 // Local units are this many user units at most: keep 1/100 px in them too.
                 let stretch = (a * a + b * b).max(c * c + dd * dd).sqrt().max(1e-12);
                 let extra = stretch.log10().ceil().clamp(0.0, 12.0) as usize;
-                (
-                    self.path_data(&(inv * p.path.clone()), self.decimals + extra),
-                    inv,
-                )
+                let mut v = self.path_value(inv * p.path.clone(), self.decimals + extra);
+                if let Value::Path { fit: Some(tol), .. } = &mut v {
+                    *tol /= stretch;
+                }
+                (v, inv)
             }
         };
-        if d.is_empty() {
-            return;
-        }
         let mut a = vec![("d", d)];
         if let Some(f) = frame {
-            a.push(("transform", matrix(f)));
+            a.push(("transform", Value::Matrix(f)));
         }
         match &p.fill {
             Some(f) => {
                 a.push(("fill", self.paint(&f.paint, to_local, prefix, defs)));
                 if f.opacity != 1.0 {
-                    a.push(("fill-opacity", sig(f.opacity)));
+                    a.push(("fill-opacity", Value::num(f.opacity, NumFormat::Sig)));
                 }
                 if f.even_odd {
                     a.push(("fill-rule", "evenodd".into()));
@@ -362,7 +381,7 @@ impl Document {
                 a.push(("paint-order", "stroke".into()));
             }
         }
-        body.empty("path", &a);
+        body.empty("path", a);
     }
 
     fn stroke_attrs(
@@ -370,22 +389,20 @@ impl Document {
         s: &Stroke,
         to_local: Affine,
         prefix: &str,
-        defs: &mut Xml,
-        a: &mut Vec<(&'static str, String)>,
+        defs: &mut Builder,
+        a: &mut Attrs,
     ) {
         a.push(("stroke", self.paint(&s.paint, to_local, prefix, defs)));
         // Stroke widths keep two more decimals than coordinates: hairlines matter. In a pen's
         // own frame, units are not pixels: keep significant digits instead.
-        let len = |x: f64| {
-            if s.frame.is_some() {
-                sig(x)
-            } else {
-                fixed(x, self.decimals + 2)
-            }
+        let format = if s.frame.is_some() {
+            NumFormat::Sig
+        } else {
+            NumFormat::Fixed(self.decimals + 2)
         };
-        a.push(("stroke-width", len(s.width)));
+        a.push(("stroke-width", Value::num(s.width, format)));
         if s.opacity != 1.0 {
-            a.push(("stroke-opacity", sig(s.opacity)));
+            a.push(("stroke-opacity", Value::num(s.opacity, NumFormat::Sig)));
         }
         match s.cap {
             LineCap::Butt => {}
@@ -399,63 +416,52 @@ impl Document {
             LineJoin::Bevel => a.push(("stroke-linejoin", "bevel".into())),
         }
         if s.miter_limit != 4.0 {
-            a.push(("stroke-miterlimit", sig(s.miter_limit)));
+            a.push((
+                "stroke-miterlimit",
+                Value::num(s.miter_limit, NumFormat::Sig),
+            ));
         }
         if !s.dashes.is_empty() {
-            let d: Vec<String> = s.dashes.iter().map(|x| len(*x)).collect();
-            a.push(("stroke-dasharray", d.join(" ")));
-            if s.dash_offset != 0.0 {
-                a.push(("stroke-dashoffset", len(s.dash_offset)));
+            a.push(("stroke-dasharray", Value::Nums(s.dashes.clone(), format)));
+            if s.dash_offset != 0.0 || self.uniform {
+                a.push(("stroke-dashoffset", Value::num(s.dash_offset, format)));
             }
         }
-    }
-
-    fn path_data(&self, path: &kurbo::BezPath, decimals: usize) -> String {
-        let mut d = String::new();
-        let pt = |q: kurbo::Point| format!("{} {}", fixed(q.x, decimals), fixed(q.y, decimals));
-        for el in path.elements() {
-            if !d.is_empty() {
-                d.push(' ');
-            }
-            match *el {
-                PathEl::MoveTo(q) => d.push_str(&format!("M{}", pt(q))),
-                PathEl::LineTo(q) => d.push_str(&format!("L{}", pt(q))),
-                PathEl::QuadTo(q1, q) => d.push_str(&format!("Q{} {}", pt(q1), pt(q))),
-                PathEl::CurveTo(q1, q2, q) => {
-                    d.push_str(&format!("C{} {} {}", pt(q1), pt(q2), pt(q)))
-                }
-                PathEl::ClosePath => d.push('Z'),
-            }
-        }
-        d
     }
 
     /// A paint attribute value; gradients are written to `defs`, their geometry mapped by
     /// `to_local` into the element's coordinates.
-    fn paint(&mut self, paint: &Paint, to_local: Affine, prefix: &str, defs: &mut Xml) -> String {
+    fn paint(
+        &mut self,
+        paint: &Paint,
+        to_local: Affine,
+        prefix: &str,
+        defs: &mut Builder,
+    ) -> Value {
         match paint {
-            Paint::Color(c) => hex(*c),
+            Paint::Color(c) => hex(*c).into(),
             Paint::Gradient(g) => {
                 let id = format!("{prefix}{}", self.next_id);
                 self.next_id += 1;
                 self.gradient(g, to_local * g.transform, &id, defs);
-                format!("url(#{id})")
+                format!("url(#{id})").into()
             }
         }
     }
 
-    fn gradient(&self, g: &Gradient, transform: Affine, id: &str, defs: &mut Xml) {
-        let mut a = vec![
-            ("id", id.to_string()),
+    fn gradient(&self, g: &Gradient, transform: Affine, id: &str, defs: &mut Builder) {
+        let mut a: Attrs = vec![
+            ("id", id.into()),
             ("gradientUnits", "userSpaceOnUse".into()),
         ];
+        let s = |x: f64| Value::num(x, NumFormat::Sig);
         let name = match g.kind {
             GradientKind::Linear { start, end } => {
                 a.extend([
-                    ("x1", sig(start.x)),
-                    ("y1", sig(start.y)),
-                    ("x2", sig(end.x)),
-                    ("y2", sig(end.y)),
+                    ("x1", s(start.x)),
+                    ("y1", s(start.y)),
+                    ("x2", s(end.x)),
+                    ("y2", s(end.y)),
                 ]);
                 "linearGradient"
             }
@@ -466,95 +472,57 @@ impl Document {
                 focal_radius,
             } => {
                 a.extend([
-                    ("cx", sig(center.x)),
-                    ("cy", sig(center.y)),
-                    ("r", sig(radius)),
-                    ("fx", sig(focal.x)),
-                    ("fy", sig(focal.y)),
+                    ("cx", s(center.x)),
+                    ("cy", s(center.y)),
+                    ("r", s(radius)),
+                    ("fx", s(focal.x)),
+                    ("fy", s(focal.y)),
                 ]);
                 if focal_radius != 0.0 {
-                    a.push(("fr", sig(focal_radius)));
+                    a.push(("fr", s(focal_radius)));
                 }
                 "radialGradient"
             }
         };
-        if transform != Affine::IDENTITY {
-            a.push(("gradientTransform", matrix(transform)));
+        if transform != Affine::IDENTITY || self.uniform {
+            a.push(("gradientTransform", Value::Matrix(transform)));
         }
         match g.spread {
             Spread::Pad => {}
             Spread::Reflect => a.push(("spreadMethod", "reflect".into())),
             Spread::Repeat => a.push(("spreadMethod", "repeat".into())),
         }
-        defs.open(name, &a);
-        for s in &g.stops {
-            let mut sa = vec![("offset", sig(s.offset)), ("stop-color", hex(s.color))];
-            if s.opacity != 1.0 {
-                sa.push(("stop-opacity", sig(s.opacity)));
+        defs.open(name, a);
+        for st in &g.stops {
+            let mut sa: Attrs = vec![
+                ("offset", s(st.offset)),
+                ("stop-color", hex(st.color).into()),
+            ];
+            if st.opacity != 1.0 {
+                sa.push(("stop-opacity", s(st.opacity)));
             }
-            defs.empty("stop", &sa);
+            defs.empty("stop", sa);
         }
-        defs.close(name);
+        defs.close();
     }
 
-    fn image(&self, img: &ImageItem, body: &mut Xml) {
-        let mut a = vec![
-            ("width", sig(img.width)),
-            ("height", sig(img.height)),
+    fn image(&self, img: &ImageItem, body: &mut Builder) {
+        let s = |x: f64| Value::num(x, NumFormat::Sig);
+        let mut a: Attrs = vec![
+            ("width", s(img.width)),
+            ("height", s(img.height)),
             ("preserveAspectRatio", "none".into()),
-            ("transform", matrix(img.transform)),
+            ("transform", Value::Matrix(img.transform)),
         ];
         if img.pixelated {
             a.push(("image-rendering", "optimizeSpeed".into()));
         }
         a.push((
             "xlink:href",
-            format!("data:{};base64,{}", img.mime, base64(&img.data)),
+            format!("data:{};base64,{}", img.mime, base64(&img.data)).into(),
         ));
-        body.empty("image", &a);
+        body.empty("image", a);
     }
-}
-
-/// `x` with at most `decimals` decimals, trailing zeros dropped, no negative zero.
-fn fixed(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
-}
-
-/// `x` to 9 significant digits (for scale-free values: opacities, gradient geometry, matrices).
-fn sig(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return "0".into();
-    }
-    let r: f64 = format!("{x:.8e}").parse().unwrap_or(x);
-    let s = format!("{r}");
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
-}
-
-fn matrix(m: Affine) -> String {
-    let c = m.as_coeffs();
-    format!(
-        "matrix({} {} {} {} {} {})",
-        sig(c[0]),
-        sig(c[1]),
-        sig(c[2]),
-        sig(c[3]),
-        sig(c[4]),
-        sig(c[5])
-    )
 }
 
 fn hex(c: Rgba) -> String {
@@ -586,17 +554,6 @@ pub(crate) fn base64(data: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn number_formats() {
-        assert_eq!(fixed(1.23456, 2), "1.23");
-        assert_eq!(fixed(-0.001, 2), "0");
-        assert_eq!(fixed(10.0, 2), "10");
-        assert_eq!(fixed(3.5, 0), "4");
-        assert_eq!(sig(0.1 + 0.2), "0.3");
-        assert_eq!(sig(-1.0), "-1");
-        assert_eq!(sig(123456789.123), "123456789");
-    }
 
     #[test]
     fn base64_matches_rfc4648_vectors() {

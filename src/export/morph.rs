@@ -1,0 +1,166 @@
+//! A morph ready to export: built once, then asked for any frame or any animation.
+//!
+//! This is the precompute-then-apply shape of the whole pipeline: the compatible meshes, the
+//! rigid interpolator (eq. (1) factored once) and both artworks bound to their meshes are made
+//! once; a frame is then one solve, one warp and one render, and frames are independent, so
+//! sequences are computed in parallel.
+
+use crate::artwork::{ArtworkPair, Scene};
+use crate::error::Result;
+use crate::export::Timeline;
+use crate::geometry::Point;
+use crate::mesh::CompatibleMeshes;
+use crate::render::{animated_svg, frame_pixmap, frame_svg, FrameOptions};
+use crate::rigid::Interpolator;
+use rayon::prelude::*;
+use tiny_skia::Pixmap;
+
+/// The compatible meshes, their interpolator and the bound artwork, with the frame settings.
+pub struct Morph {
+    meshes: CompatibleMeshes,
+    interpolator: Interpolator,
+    artwork: ArtworkPair,
+    frame: FrameOptions,
+}
+
+impl Morph {
+    /// Binds both scenes to the meshes (flattened for a quarter pixel at `frame`'s size) and
+    /// keeps the interpolator for every later frame.
+    pub fn new(
+        meshes: CompatibleMeshes,
+        interpolator: Interpolator,
+        source: &Scene,
+        target: &Scene,
+        frame: FrameOptions,
+    ) -> Result<Self> {
+        let artwork = ArtworkPair::new(source, target, &meshes, frame.flatten_tolerance())?;
+        Ok(Morph {
+            meshes,
+            interpolator,
+            artwork,
+            frame,
+        })
+    }
+
+    /// The compatible meshes.
+    pub fn meshes(&self) -> &CompatibleMeshes {
+        &self.meshes
+    }
+
+    /// View, size and background of every frame.
+    pub fn frame_options(&self) -> &FrameOptions {
+        &self.frame
+    }
+
+    /// The mesh at `t` (§4.1).
+    pub fn vertices_at(&self, t: f64) -> Vec<Point> {
+        self.interpolator.at_vec(t)
+    }
+
+    /// The mesh at every frame of `timeline` (at its eased times), computed in parallel.
+    pub fn vertex_frames(&self, timeline: &Timeline) -> Vec<Vec<Point>> {
+        self.interpolator
+            .frames(&timeline.sanitized().morph_times())
+    }
+
+    /// The source and target artwork placed in the mesh at `t`: the exact input drawings at
+    /// t = 0 and t = 1.
+    pub fn scenes_at(&self, t: f64) -> Result<(Scene, Scene)> {
+        self.artwork.at(&self.vertices_at(t))
+    }
+
+    /// Frame `t` as a standalone SVG.
+    pub fn svg_at(&self, t: f64) -> Result<String> {
+        let (s, g) = self.scenes_at(t)?;
+        frame_svg(&s, &g, t, &self.frame)
+    }
+
+    /// Frame `t` rendered (premultiplied RGBA over the background).
+    pub fn pixmap_at(&self, t: f64) -> Result<Pixmap> {
+        let (s, g) = self.scenes_at(t)?;
+        frame_pixmap(&s, &g, t, &self.frame)
+    }
+
+    /// Every frame of `timeline` as a standalone SVG, in frame order.
+    pub fn svg_frames(&self, timeline: &Timeline) -> Result<Vec<String>> {
+        self.each_frame(timeline, |t| self.svg_at(t))
+    }
+
+    /// Every frame of `timeline` rendered, in frame order, in parallel.
+    pub fn pixmap_frames(&self, timeline: &Timeline) -> Result<Vec<Pixmap>> {
+        self.each_frame(timeline, |t| self.pixmap_at(t))
+    }
+
+    fn each_frame<T: Send>(
+        &self,
+        timeline: &Timeline,
+        f: impl Fn(f64) -> Result<T> + Sync + Send,
+    ) -> Result<Vec<T>> {
+        timeline
+            .sanitized()
+            .morph_times()
+            .into_par_iter()
+            .map(f)
+            .collect()
+    }
+
+    /// The whole morph as one animated SVG (SMIL; see [`crate::render::animated`]).
+    pub fn animated_svg(&self, timeline: &Timeline) -> Result<String> {
+        let frames = self.vertex_frames(timeline);
+        let keyframes = frames
+            .par_iter()
+            .map(|v| self.artwork.warped_at(v))
+            .collect::<Result<Vec<_>>>()?;
+        animated_svg(&keyframes, &timeline.sanitized(), &self.frame)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rigid::Method;
+
+    fn gourd() -> Morph {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/gourd/");
+        let opts = crate::drawing::ReadOptions::default();
+        let read = |f: &str| {
+            let path = format!("{dir}{f}");
+            let text = std::fs::read_to_string(&path).unwrap();
+            (
+                crate::drawing::Drawing::from_str(&path, &text, &opts).unwrap(),
+                Scene::from_svg(&path, &text, "controls").unwrap(),
+            )
+        };
+        let (s, ss) = read("source.svg");
+        let (t, ts) = read("target.svg");
+        let c = crate::compatible::build(&s, &t, &Default::default()).unwrap();
+        let m = &c.meshes;
+        let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+        Morph::new(c.meshes, interp, &ss, &ts, FrameOptions::for_scene(&ss)).unwrap()
+    }
+
+    #[test]
+    fn frames_follow_the_timeline_and_sequences_match_single_frames() {
+        let m = gourd();
+        let tl = Timeline {
+            frames: 3,
+            easing: crate::export::Easing::EaseInOut,
+            ..Timeline::default()
+        };
+        let v = m.vertex_frames(&tl);
+        assert_eq!(v.len(), 3);
+        let worst = v[0]
+            .iter()
+            .zip(&m.meshes().source)
+            .map(|(a, b)| a.distance(*b))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9 * 400.0, "frame 0 is the source mesh: {worst}");
+        let svgs = m.svg_frames(&tl).unwrap();
+        assert_eq!(svgs[1], m.svg_at(0.5).unwrap());
+        let px = m.pixmap_frames(&tl).unwrap();
+        assert_eq!(px[2].data(), m.pixmap_at(1.0).unwrap().data());
+        let anim = m.animated_svg(&tl).unwrap();
+        assert!(anim.contains("<animate attributeName=\"d\""));
+        assert_eq!(anim, m.animated_svg(&tl).unwrap(), "deterministic");
+    }
+}

@@ -1,0 +1,416 @@
+//! The morph as one animated SVG file (SMIL), playable in Chromium, Firefox and Safari.
+//!
+//! Every keyframe is built as the same blended frame tree ([`super::svg_frame`] in
+//! [`Mode::Keyframe`]); the trees are lined up element by element and every attribute that
+//! differs between keyframes becomes an animation of that element:
+//! - path data: one `<animate attributeName="d">` whose keyframes share one segment structure
+//!   (browsers snap instead of interpolating otherwise), polylines fitted with cubics that hold a
+//!   quarter pixel in *every* keyframe ([`super::fit`]);
+//! - numbers (stroke widths, dashes, the blend weights `k2`/`k3` of the filter that makes the frame
+//!   `(1 − t)·S_t + t·T_t`): `<animate>` with the numbers;
+//! - transforms (images, gradients, shaped pens): decomposed as
+//!   `translate · rotate · skewX · scale`, one `<animateTransform>` each (the first replaces,
+//!   the rest add), the rotation unwrapped so it never jumps by a turn;
+//! - anything else that changes: a discrete `<animate>`.
+//!
+//! Keyframes that linear interpolation between the kept neighbours already reproduces within
+//! the tolerance (a quarter pixel for geometry, 1/1000 for scale-free numbers) are dropped, per
+//! animation. The static attribute values are those of the first frame (t = 0), so a viewer
+//! without SMIL shows the source.
+//!
+//! Timing: the values run through [`Timeline::sequence`] (and back to the start for yoyo) at
+//! uniform `keyTimes` over one [`Timeline::period`]; played once, the animation freezes on the
+//! target. Paused at `τ·duration`, it shows the frame at `t = ease(τ)` (exactly at keyframes,
+//! linearly between them).
+
+use super::fit::fit_paths;
+use super::svg_frame::{frame_tree, Mode};
+use super::tree::{fixed, path_data, sig, Node, NumFormat, Value};
+use super::FrameOptions;
+use crate::artwork::Scene;
+use crate::error::{Error, Result};
+use crate::export::{Playback, Timeline};
+use kurbo::{Affine, BezPath, PathEl};
+use rayon::prelude::*;
+
+/// Tolerance for scale-free numbers (opacities, blend weights, matrix coefficients).
+const UNIT_TOLERANCE: f64 = 1e-3;
+
+/// The animated SVG of a morph. `keyframes[i]` are the warped source and target at frame `i` of
+/// `timeline` (at `t = timeline.morph_times()[i]`), each from
+/// [`crate::artwork::ArtworkPair::warped_at`] so that all keyframes have the same structure.
+pub fn animated_svg(
+    keyframes: &[(Scene, Scene)],
+    timeline: &Timeline,
+    opts: &FrameOptions,
+) -> Result<String> {
+    let timeline = timeline.sanitized();
+    if keyframes.len() != timeline.frames {
+        return Err(Error::internal(format!(
+            "{} keyframes for a timeline of {} frames",
+            keyframes.len(),
+            timeline.frames
+        )));
+    }
+    let ts = timeline.morph_times();
+    let trees: Vec<Node> = keyframes
+        .par_iter()
+        .zip(&ts)
+        .map(|((s, t), &at)| frame_tree(s, t, at, opts, Mode::Keyframe))
+        .collect();
+    let mut order = timeline.sequence();
+    if timeline.playback == Playback::Yoyo {
+        order.push(0);
+    }
+    let nodes: Vec<&Node> = order.iter().map(|&i| &trees[i]).collect();
+    let ctx = Context {
+        tol: opts.flatten_tolerance(),
+        timing: timing(&timeline),
+        key_decimals: (order.len() as f64).log10().ceil() as usize + 2,
+    };
+    merge(&nodes, &ctx)?.to_svg_string()
+}
+
+/// What every animation of a file shares.
+struct Context {
+    /// Geometry tolerance in user units.
+    tol: f64,
+    /// `dur`, `repeatCount`/`fill` attributes.
+    timing: Vec<(&'static str, Value)>,
+    /// Decimals of `keyTimes`.
+    key_decimals: usize,
+}
+
+fn timing(tl: &Timeline) -> Vec<(&'static str, Value)> {
+    let mut a = vec![
+        ("begin", "0s".into()),
+        ("dur", format!("{}s", sig(tl.period())).into()),
+    ];
+    if tl.repeats() {
+        a.push(("repeatCount", "indefinite".into()));
+    } else {
+        a.push(("fill", "freeze".into()));
+    }
+    a
+}
+
+/// One element across keyframes (`nodes[k]` = the element in keyframe k of the playback
+/// order) merged into one element with animations.
+fn merge(nodes: &[&Node], ctx: &Context) -> Result<Node> {
+    let first = nodes[0];
+    for n in nodes {
+        let same = n.name == first.name
+            && n.children.len() == first.children.len()
+            && n.attrs.len() == first.attrs.len()
+            && n.attrs.iter().zip(&first.attrs).all(|(a, b)| a.0 == b.0);
+        if !same {
+            return Err(Error::internal(format!(
+                "keyframes differ in structure at <{}>",
+                first.name
+            )));
+        }
+    }
+    let mut out = Node::new(&first.name, Vec::new());
+    let mut animations = Vec::new();
+    for (ai, (key, v0)) in first.attrs.iter().enumerate() {
+        let values: Vec<&Value> = nodes.iter().map(|n| &n.attrs[ai].1).collect();
+        let (stat, anims) = attribute(key, v0, &values, ctx);
+        out.attrs.push((key, stat));
+        animations.extend(anims);
+    }
+    let children: Vec<Node> = (0..first.children.len())
+        .into_par_iter()
+        .map(|ci| {
+            let kids: Vec<&Node> = nodes.iter().map(|n| &n.children[ci]).collect();
+            merge(&kids, ctx)
+        })
+        .collect::<Result<_>>()?;
+    out.children = children;
+    out.children.extend(animations);
+    Ok(out)
+}
+
+/// The static value of one attribute and the animations it needs.
+fn attribute(
+    key: &'static str,
+    v0: &Value,
+    values: &[&Value],
+    ctx: &Context,
+) -> (Value, Vec<Node>) {
+    match v0 {
+        Value::Path { decimals, fit, .. } => {
+            let paths: Vec<BezPath> = values
+                .iter()
+                .map(|v| match v {
+                    Value::Path { path, .. } => path.clone(),
+                    _ => BezPath::new(),
+                })
+                .collect();
+            let tol = fit.unwrap_or(ctx.tol);
+            let paths = match fit {
+                Some(t) => fit_paths(&paths, *t),
+                None => paths,
+            };
+            let stat = Value::Text(path_data(&paths[0], *decimals));
+            let nums: Vec<Vec<f64>> = paths.iter().map(coordinates).collect();
+            // Unchanged (to the written precision) in every keyframe: no animation.
+            let step = 0.5 * 10f64.powi(-(*decimals as i32));
+            let still = nums
+                .iter()
+                .all(|n| n.iter().zip(&nums[0]).all(|(a, b)| (a - b).abs() < step));
+            if still {
+                return (stat, Vec::new());
+            }
+            let kept = keep(&nums, tol);
+            // Keyframe values at 1/10 px: in motion, finer steps are invisible, and they are
+            // most of the file.
+            let text = |k: usize| path_data(&paths[k], decimals.saturating_sub(1));
+            let anim = animate(key, &kept, text, ctx, false);
+            (stat, vec![anim])
+        }
+        Value::Nums(_, format) => {
+            let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
+            if texts.iter().all(|t| *t == texts[0]) {
+                return (values[0].clone(), Vec::new());
+            }
+            let nums: Vec<Vec<f64>> = values
+                .iter()
+                .map(|v| match v {
+                    Value::Nums(n, _) => n.clone(),
+                    _ => Vec::new(),
+                })
+                .collect();
+            if nums.iter().any(|n| n.len() != nums[0].len()) {
+                return (values[0].clone(), vec![discrete(key, &texts, ctx)]);
+            }
+            let tol = match format {
+                NumFormat::Fixed(_) => ctx.tol,
+                NumFormat::Sig => UNIT_TOLERANCE,
+            };
+            let kept = keep(&nums, tol);
+            (
+                values[0].clone(),
+                vec![animate(key, &kept, |k| texts[k].clone(), ctx, false)],
+            )
+        }
+        Value::Matrix(_) => {
+            let ms: Vec<Affine> = values
+                .iter()
+                .map(|v| match v {
+                    Value::Matrix(m) => *m,
+                    _ => Affine::IDENTITY,
+                })
+                .collect();
+            if ms.iter().all(|m| *m == ms[0]) {
+                return (values[0].clone(), Vec::new());
+            }
+            (values[0].clone(), animate_transform(key, &ms, ctx))
+        }
+        Value::Text(_) => {
+            let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
+            if texts.iter().all(|t| *t == texts[0]) {
+                return (values[0].clone(), Vec::new());
+            }
+            (values[0].clone(), vec![discrete(key, &texts, ctx)])
+        }
+    }
+}
+
+/// Every coordinate of a path, in order.
+fn coordinates(p: &BezPath) -> Vec<f64> {
+    let mut out = Vec::new();
+    for el in p.elements() {
+        let pts: &[kurbo::Point] = match el {
+            PathEl::MoveTo(a) | PathEl::LineTo(a) => std::slice::from_ref(a),
+            PathEl::QuadTo(a, b) => &[*a, *b],
+            PathEl::CurveTo(a, b, c) => &[*a, *b, *c],
+            PathEl::ClosePath => &[],
+        };
+        for q in pts {
+            out.extend([q.x, q.y]);
+        }
+    }
+    out
+}
+
+/// The keyframes to keep (indices, first and last always): greedily, each kept keyframe reaches
+/// as far as linear interpolation to the next kept one reproduces every keyframe between them
+/// within `tol` (per number). The keyframes are at uniform times.
+fn keep(values: &[Vec<f64>], tol: f64) -> Vec<usize> {
+    let n = values.len();
+    let mut kept = vec![0];
+    let mut a = 0;
+    while a < n - 1 {
+        let mut b = a + 1;
+        while b + 1 < n && reproduces(values, a, b + 1, tol) {
+            b += 1;
+        }
+        kept.push(b);
+        a = b;
+    }
+    kept
+}
+
+/// Whether the lerp from keyframe `a` to `b` reproduces every keyframe strictly between.
+fn reproduces(values: &[Vec<f64>], a: usize, b: usize, tol: f64) -> bool {
+    let (va, vb) = (&values[a], &values[b]);
+    (a + 1..b).all(|i| {
+        let s = (i - a) as f64 / (b - a) as f64;
+        values[i]
+            .iter()
+            .zip(va.iter().zip(vb))
+            .all(|(x, (p, q))| (p + (q - p) * s - x).abs() <= tol)
+    })
+}
+
+/// `keyTimes` of the kept keyframes out of `total`.
+fn key_times(kept: &[usize], total: usize, ctx: &Context) -> String {
+    kept.iter()
+        .map(|&k| fixed(k as f64 / (total - 1) as f64, ctx.key_decimals))
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
+/// An `<animate>` of `key` through the kept keyframes.
+fn animate(
+    key: &str,
+    kept: &[usize],
+    text: impl Fn(usize) -> String,
+    ctx: &Context,
+    discrete: bool,
+) -> Node {
+    let total = *kept.last().unwrap_or(&0) + 1;
+    let mut a: Vec<(&'static str, Value)> = vec![("attributeName", key.into())];
+    if discrete {
+        a.push(("calcMode", "discrete".into()));
+    }
+    a.push((
+        "values",
+        kept.iter()
+            .map(|&k| text(k))
+            .collect::<Vec<_>>()
+            .join(";")
+            .into(),
+    ));
+    a.push(("keyTimes", key_times(kept, total, ctx).into()));
+    a.extend(ctx.timing.iter().cloned());
+    Node::new("animate", a)
+}
+
+/// A discrete `<animate>` switching at every change.
+fn discrete(key: &str, texts: &[String], ctx: &Context) -> Node {
+    let mut kept = vec![0];
+    for k in 1..texts.len() {
+        if texts[k] != texts[k - 1] || k == texts.len() - 1 {
+            kept.push(k);
+        }
+    }
+    animate(key, &kept, |k| texts[k].clone(), ctx, true)
+}
+
+/// `m` as `translate(e, f) · rotate(θ) · skewX(φ) · scale(sx, sy)`: `[e, f, θ°, φ°, sx, sy]`.
+fn decompose(m: Affine) -> [f64; 6] {
+    let [a, b, c, d, e, f] = m.as_coeffs();
+    let sx = a.hypot(b);
+    let theta = b.atan2(a);
+    let (sin, cos) = theta.sin_cos();
+    // The second column rotated back by −θ is (tan φ · sy, sy).
+    let (c2, sy) = (cos * c + sin * d, -sin * c + cos * d);
+    let skew = if sy != 0.0 { (c2 / sy).atan() } else { 0.0 };
+    [e, f, theta.to_degrees(), skew.to_degrees(), sx, sy]
+}
+
+/// The four `<animateTransform>`s of a changing transform attribute.
+fn animate_transform(key: &str, ms: &[Affine], ctx: &Context) -> Vec<Node> {
+    let mut parts: Vec<[f64; 6]> = ms.iter().map(|m| decompose(*m)).collect();
+    // Unwrap the rotation so consecutive keyframes never differ by half a turn or more.
+    for k in 1..parts.len() {
+        let prev = parts[k - 1][2];
+        let mut a = parts[k][2];
+        a -= 360.0 * ((a - prev) / 360.0).round();
+        parts[k][2] = a;
+    }
+    // Translations to 1/100 of the tolerance, angles to 1/1000 degree, scales to 6 decimals.
+    let move_decimals = (-(ctx.tol / 100.0).log10()).ceil().clamp(0.0, 12.0) as usize;
+    let kinds: [(&str, [usize; 2], usize, f64, usize); 4] = [
+        ("translate", [0, 1], 2, ctx.tol, move_decimals),
+        ("rotate", [2, 2], 1, UNIT_TOLERANCE, 3),
+        ("skewX", [3, 3], 1, UNIT_TOLERANCE, 3),
+        ("scale", [4, 5], 2, UNIT_TOLERANCE, 6),
+    ];
+    let mut out = Vec::new();
+    for (i, (kind, idx, dims, tol, decimals)) in kinds.iter().enumerate() {
+        let nums: Vec<Vec<f64>> = parts
+            .iter()
+            .map(|p| idx[..*dims].iter().map(|&j| p[j]).collect())
+            .collect();
+        let kept = keep(&nums, *tol);
+        let total = parts.len();
+        let text = |k: usize| {
+            nums[k]
+                .iter()
+                .map(|x| fixed(*x, *decimals))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let mut a: Vec<(&'static str, Value)> = vec![
+            ("attributeName", key.to_string().into()),
+            ("type", (*kind).into()),
+        ];
+        if i > 0 {
+            a.push(("additive", "sum".into()));
+        }
+        a.push((
+            "values",
+            kept.iter()
+                .map(|&k| text(k))
+                .collect::<Vec<_>>()
+                .join(";")
+                .into(),
+        ));
+        a.push(("keyTimes", key_times(&kept, total, ctx).into()));
+        a.extend(ctx.timing.iter().cloned());
+        out.push(Node::new("animateTransform", a));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decomposition_recomposes() {
+        let m = Affine::translate((3.0, -2.0))
+            * Affine::rotate(2.5)
+            * Affine::skew(0.3, 0.0)
+            * Affine::scale_non_uniform(1.5, -0.7);
+        let [e, f, th, sk, sx, sy] = decompose(m);
+        let r = Affine::translate((e, f))
+            * Affine::rotate(th.to_radians())
+            * Affine::skew(sk.to_radians().tan(), 0.0)
+            * Affine::scale_non_uniform(sx, sy);
+        for (a, b) in m.as_coeffs().iter().zip(r.as_coeffs()) {
+            assert!((a - b).abs() < 1e-12, "{m:?} vs {r:?}");
+        }
+    }
+
+    #[test]
+    fn keyframes_on_a_line_are_dropped_and_turns_kept() {
+        // Linear, then a kink at 5, then linear: keep 0, 5, 9.
+        let v: Vec<Vec<f64>> = (0..10)
+            .map(|i| {
+                let x = i as f64;
+                vec![if i <= 5 { x } else { 5.0 - (x - 5.0) * 2.0 }, 7.0]
+            })
+            .collect();
+        assert_eq!(keep(&v, 1e-9), vec![0, 5, 9]);
+        // Within tolerance a small wobble is dropped too.
+        let w: Vec<Vec<f64>> = (0..5)
+            .map(|i| vec![i as f64 + (i % 2) as f64 * 0.01])
+            .collect();
+        assert_eq!(keep(&w, 0.05), vec![0, 4]);
+        assert_eq!(keep(&w, 0.001), vec![0, 1, 2, 3, 4]);
+        assert_eq!(keep(&v[..2], 0.1), vec![0, 1]);
+    }
+}
