@@ -186,23 +186,88 @@ impl Builder {
     }
 }
 
-/// Path data with `decimals` decimals per coordinate.
+/// Compact path data with `decimals` decimals per coordinate: relative commands (`m l q c z`),
+/// no leading zeros, no separator before a minus sign. Every point is rounded in absolute
+/// coordinates first and the relative steps are taken between rounded points, so rounding
+/// never accumulates along the path. Keyframes of one outline keep the same commands.
 pub(crate) fn path_data(path: &BezPath, decimals: usize) -> String {
+    let unit = 10f64.powi(decimals as i32);
+    // Rounded absolute coordinates as integers of 10^-decimals.
+    let round = |q: kurbo::Point| ((q.x * unit).round() as i64, (q.y * unit).round() as i64);
     let mut d = String::new();
-    let pt = |q: kurbo::Point| format!("{} {}", fixed(q.x, decimals), fixed(q.y, decimals));
-    for el in path.elements() {
-        if !d.is_empty() {
+    let mut cur = (0i64, 0i64);
+    let mut start = (0i64, 0i64);
+    let push = |d: &mut String, v: i64| {
+        let text = scaled(v, decimals);
+        let after_number = d
+            .as_bytes()
+            .last()
+            .is_some_and(|c| c.is_ascii_digit() || *c == b'.');
+        let self_delimiting =
+            text.starts_with('-') || (text.starts_with('.') && last_number_has_point(d));
+        if after_number && !self_delimiting {
             d.push(' ');
         }
+        d.push_str(&text);
+    };
+    for el in path.elements() {
+        let points = |d: &mut String, cmd: char, pts: &[kurbo::Point], cur: &mut (i64, i64)| {
+            d.push(cmd);
+            let base = *cur;
+            for q in pts {
+                let r = round(*q);
+                push(d, r.0 - base.0);
+                push(d, r.1 - base.1);
+                *cur = r;
+            }
+        };
         match *el {
-            PathEl::MoveTo(q) => d.push_str(&format!("M{}", pt(q))),
-            PathEl::LineTo(q) => d.push_str(&format!("L{}", pt(q))),
-            PathEl::QuadTo(q1, q) => d.push_str(&format!("Q{} {}", pt(q1), pt(q))),
-            PathEl::CurveTo(q1, q2, q) => d.push_str(&format!("C{} {} {}", pt(q1), pt(q2), pt(q))),
-            PathEl::ClosePath => d.push('Z'),
+            PathEl::MoveTo(q) => {
+                points(&mut d, 'm', &[q], &mut cur);
+                start = cur;
+            }
+            PathEl::LineTo(q) => points(&mut d, 'l', &[q], &mut cur),
+            PathEl::QuadTo(a, q) => points(&mut d, 'q', &[a, q], &mut cur),
+            PathEl::CurveTo(a, b, q) => points(&mut d, 'c', &[a, b, q], &mut cur),
+            PathEl::ClosePath => {
+                d.push('z');
+                cur = start;
+            }
         }
     }
     d
+}
+
+/// Whether the number at the end of `d` already has a decimal point (so a following `.5`
+/// starts a new number without a separator).
+fn last_number_has_point(d: &str) -> bool {
+    d.bytes()
+        .rev()
+        .take_while(|c| c.is_ascii_digit() || *c == b'.')
+        .any(|c| c == b'.')
+}
+
+/// `v · 10^-decimals` written without trailing zeros or a leading zero: `-.5`, `12.25`, `3`.
+fn scaled(v: i64, decimals: usize) -> String {
+    let neg = v < 0;
+    let a = v.unsigned_abs();
+    let unit = 10u64.pow(decimals as u32);
+    let (int, frac) = (a / unit, a % unit);
+    let mut s = String::new();
+    if neg && a != 0 {
+        s.push('-');
+    }
+    if frac == 0 {
+        s.push_str(&int.to_string());
+        return s;
+    }
+    if int != 0 {
+        s.push_str(&int.to_string());
+    }
+    let f = format!("{frac:0decimals$}");
+    s.push('.');
+    s.push_str(f.trim_end_matches('0'));
+    s
 }
 
 /// `x` with at most `decimals` decimals, trailing zeros dropped, no negative zero.
@@ -272,6 +337,50 @@ mod tests {
     }
 
     #[test]
+    fn path_data_is_compact_relative_and_does_not_drift() {
+        let mut p = BezPath::new();
+        p.move_to((10.0, 20.0));
+        p.line_to((10.5, 19.25));
+        p.curve_to((11.0, 19.0), (12.0, 19.0), (13.0, 20.0));
+        p.close_path();
+        p.move_to((0.0, 0.0));
+        p.line_to((-0.05, 0.5));
+        assert_eq!(
+            path_data(&p, 2),
+            "m10 20l.5-.75c.5-.25 1.5-.25 2.5.75zm-10-20l-.05.5"
+        );
+        // 1000 steps of 0.0049 rounded to 0.01 would drift by 4.9 if rounded step by step.
+        let mut q = BezPath::new();
+        q.move_to((0.0, 0.0));
+        for i in 1..=1000 {
+            q.line_to((i as f64 * 0.0049, 0.0));
+        }
+        let d = path_data(&q, 2);
+        let total: f64 = d
+            .split('l')
+            .skip(1)
+            .map(|s| s.split([' ', '-']).next().unwrap())
+            .map(|x| {
+                if x.is_empty() {
+                    0.0
+                } else {
+                    x.parse::<f64>().unwrap()
+                }
+            })
+            .sum();
+        assert!((total - 4.9).abs() < 0.006, "{total}");
+        // Parses back (usvg via svgtypes) to the rounded points.
+        let parsed: Vec<_> = svgtypes::SimplifyingPathParser::from(d.as_str())
+            .map(|s| s.unwrap())
+            .collect();
+        assert_eq!(parsed.len(), 1001);
+        assert_eq!(scaled(-5, 1), "-.5");
+        assert_eq!(scaled(1200, 2), "12");
+        assert_eq!(scaled(-1205, 2), "-12.05");
+        assert_eq!(scaled(0, 3), "0");
+    }
+
+    #[test]
     fn builder_nests_and_serializes() {
         let mut b = Builder::new();
         assert!(b.is_empty());
@@ -296,7 +405,7 @@ mod tests {
         assert_eq!(nodes.len(), 1);
         assert_eq!(
             nodes[0].to_svg_string().unwrap(),
-            r#"<g opacity="0.5"><path d="M0 0 L1.25 0 Z"/></g>"#
+            r#"<g opacity="0.5"><path d="m0 0l1.25 0z"/></g>"#
         );
         assert_eq!(
             Value::Nums(vec![1.0, 2.5], NumFormat::Fixed(1)).text(),

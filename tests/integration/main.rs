@@ -3,5 +3,6 @@
 mod common;
 mod compatible;
 mod errors;
+mod export;
 mod motion;
 mod similarity;

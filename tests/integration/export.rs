@@ -1,0 +1,206 @@
+//! Exports over the fixtures: the animated SVG is well formed SMIL that re-parses, every `d`
+//! animation keeps one segment structure, timing follows the timeline, the ends render as the
+//! input drawings, and the same input gives the same bytes.
+
+use std::path::Path;
+
+use crmorph::artwork::Scene;
+use crmorph::export::{Easing, Morph, Playback, Timeline};
+use crmorph::render::FrameOptions;
+use crmorph::rigid::{Interpolator, Method};
+use quick_xml::events::Event;
+
+use crate::common::{compatible, open, pairs};
+
+/// The morph of a fixture pair at the source's own size.
+pub(crate) fn morph_of(s: &Path, t: &Path) -> Morph {
+    let (ds, dt) = (open(s), open(t));
+    let c = compatible(&ds, &dt, false);
+    let m = &c.meshes;
+    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+    let scene = |p: &Path| {
+        Scene::from_svg_in(
+            &p.display().to_string(),
+            &std::fs::read_to_string(p).unwrap(),
+            "controls",
+            p.parent(),
+        )
+        .unwrap()
+    };
+    let (ss, ts) = (scene(s), scene(t));
+    let frame = FrameOptions::for_scene(&ss);
+    Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
+}
+
+/// One SMIL animation element's attributes.
+struct Animation {
+    name: String,
+    attrs: Vec<(String, String)>,
+}
+
+impl Animation {
+    fn get(&self, k: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(a, _)| a == k)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
+fn animations(svg: &str) -> Vec<Animation> {
+    let mut r = quick_xml::Reader::from_str(svg);
+    let mut out = Vec::new();
+    loop {
+        match r.read_event().unwrap() {
+            Event::Eof => break,
+            Event::Empty(e) | Event::Start(e) => {
+                let name = e.name().as_ref().to_string();
+                if name.starts_with("animate") {
+                    let attrs = e
+                        .attributes()
+                        .map(|a| {
+                            let a = a.unwrap();
+                            (
+                                a.key.as_ref().to_string(),
+                                a.normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                                    .unwrap()
+                                    .into_owned(),
+                            )
+                        })
+                        .collect();
+                    out.push(Animation { name, attrs });
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The command letters of path data, in order.
+fn commands(d: &str) -> String {
+    d.chars().filter(|c| c.is_ascii_alphabetic()).collect()
+}
+
+fn check_smil(name: &str, svg: &str, tl: &Timeline) {
+    usvg::Tree::from_str(svg, &usvg::Options::default())
+        .unwrap_or_else(|e| panic!("{name}: the animated SVG does not re-parse: {e}"));
+    let anims = animations(svg);
+    assert!(
+        anims.iter().any(|a| a.get("attributeName") == Some("d")),
+        "{name}: no path animation"
+    );
+    assert!(
+        anims.iter().any(|a| a.get("attributeName") == Some("k3")),
+        "{name}: no blend animation"
+    );
+    let dur = format!("{}s", tl.period());
+    for a in &anims {
+        let what = format!("{name}: <{} {:?}>", a.name, a.get("attributeName"));
+        let values: Vec<&str> = a.get("values").expect("values").split(';').collect();
+        let times: Vec<f64> = a
+            .get("keyTimes")
+            .expect("keyTimes")
+            .split(';')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert_eq!(values.len(), times.len(), "{what}: values and keyTimes");
+        assert!(values.len() >= 2, "{what}");
+        assert_eq!(times[0], 0.0, "{what}");
+        assert_eq!(*times.last().unwrap(), 1.0, "{what}");
+        assert!(times.windows(2).all(|w| w[0] < w[1]), "{what}: {times:?}");
+        assert_eq!(a.get("dur"), Some(dur.as_str()), "{what}");
+        if tl.repeats() {
+            assert_eq!(a.get("repeatCount"), Some("indefinite"), "{what}");
+        } else {
+            assert_eq!(a.get("fill"), Some("freeze"), "{what}");
+        }
+        if a.get("attributeName") == Some("d") {
+            let first = commands(values[0]);
+            for v in &values {
+                assert_eq!(commands(v), first, "{what}: keyframes differ in segments");
+            }
+        }
+        if a.get("attributeName") == Some("k3") && tl.playback != Playback::Yoyo {
+            let w: Vec<f64> = values.iter().map(|v| v.parse().unwrap()).collect();
+            assert_eq!((w[0], *w.last().unwrap()), (0.0, 1.0), "{what}: blend ends");
+        }
+    }
+}
+
+#[test]
+fn animated_svg_of_every_fixture_is_well_formed_smil() {
+    let plays = [
+        (Playback::Once, Easing::Linear),
+        (Playback::Loop, Easing::EaseInOut),
+        (Playback::Yoyo, Easing::Linear),
+    ];
+    for (k, (name, s, t)) in pairs().into_iter().enumerate() {
+        let m = morph_of(&s, &t);
+        let (playback, easing) = plays[k % plays.len()];
+        let tl = Timeline {
+            frames: 24,
+            duration: 1.5,
+            easing,
+            playback,
+        };
+        let svg = m.animated_svg(&tl).unwrap();
+        check_smil(&name, &svg, &tl);
+        assert_eq!(
+            svg,
+            m.animated_svg(&tl).unwrap(),
+            "{name}: not deterministic"
+        );
+        // Keyframes that their neighbours reproduce are dropped: twice the frames is not
+        // twice the file.
+        let at = |frames| m.animated_svg(&Timeline { frames, ..tl }).unwrap().len();
+        let (a, b) = (at(120), at(240));
+        eprintln!(
+            "{name}: {} bytes at 24 frames, {a} at 120, {b} at 240",
+            svg.len()
+        );
+        assert!(
+            (b as f64) < 1.3 * a as f64,
+            "{name}: {a} bytes at 120 frames, {b} at 240"
+        );
+    }
+}
+
+#[test]
+fn ends_render_as_the_input_drawings() {
+    for (name, s, t) in pairs() {
+        let m = morph_of(&s, &t);
+        let opts = *m.frame_options();
+        for (at, file) in [(0.0, &s), (1.0, &t)] {
+            let text = std::fs::read_to_string(file).unwrap();
+            let mut o = usvg::Options::default();
+            o.resources_dir = file.parent().map(Path::to_path_buf);
+            let tree = usvg::Tree::from_str(&text, &o).unwrap();
+            let mut want = tiny_skia::Pixmap::new(opts.size.0, opts.size.1).unwrap();
+            let sx = opts.size.0 as f32 / tree.size().width();
+            let sy = opts.size.1 as f32 / tree.size().height();
+            resvg::render(
+                &tree,
+                tiny_skia::Transform::from_scale(sx, sy),
+                &mut want.as_mut(),
+            );
+            let got = m.pixmap_at(at).unwrap();
+            let n = want.pixels().len();
+            let bad = want
+                .pixels()
+                .iter()
+                .zip(got.pixels())
+                .filter(|(a, b)| {
+                    a.red().abs_diff(b.red()) > 8
+                        || a.green().abs_diff(b.green()) > 8
+                        || a.blue().abs_diff(b.blue()) > 8
+                        || a.alpha().abs_diff(b.alpha()) > 8
+                })
+                .count();
+            assert!(
+                bad as f64 <= 0.002 * n as f64,
+                "{name} at t = {at}: {bad} of {n} pixels differ from the input drawing"
+            );
+        }
+    }
+}
