@@ -235,7 +235,7 @@ mod tests {
             .iter()
             .filter(|e| matches!(e, PathEl::CurveTo(..)))
             .count();
-        assert!(curves >= 4 && curves <= 16, "{curves} curves");
+        assert!((4..=16).contains(&curves), "{curves} curves");
         assert!(fitted.elements().len() < 30);
         let dev = max_deviation(&poly, &fitted);
         assert!(dev <= tol, "deviation {dev}");

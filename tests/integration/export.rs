@@ -173,8 +173,10 @@ fn ends_render_as_the_input_drawings() {
         let opts = *m.frame_options();
         for (at, file) in [(0.0, &s), (1.0, &t)] {
             let text = std::fs::read_to_string(file).unwrap();
-            let mut o = usvg::Options::default();
-            o.resources_dir = file.parent().map(Path::to_path_buf);
+            let o = usvg::Options {
+                resources_dir: file.parent().map(Path::to_path_buf),
+                ..Default::default()
+            };
             let tree = usvg::Tree::from_str(&text, &o).unwrap();
             let mut want = tiny_skia::Pixmap::new(opts.size.0, opts.size.1).unwrap();
             let sx = opts.size.0 as f32 / tree.size().width();
