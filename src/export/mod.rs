@@ -2,6 +2,8 @@
 //! and the encoders that turn rendered frames into files users play (the end of DESIGN.md §2:
 //! frames → GIF · APNG · HTML preview; the animated SVG writer lives in [`crate::render`]).
 
+pub mod gif;
 pub mod timeline;
 
+pub use gif::encode_gif;
 pub use timeline::{Easing, Playback, Timeline};
