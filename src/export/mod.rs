@@ -2,8 +2,10 @@
 //! and the encoders that turn rendered frames into files users play (the end of DESIGN.md §2:
 //! frames → GIF · APNG · HTML preview; the animated SVG writer lives in [`crate::render`]).
 
+pub mod apng;
 pub mod gif;
 pub mod timeline;
 
+pub use apng::encode_apng;
 pub use gif::encode_gif;
 pub use timeline::{Easing, Playback, Timeline};
