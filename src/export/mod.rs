@@ -4,8 +4,10 @@
 
 pub mod apng;
 pub mod gif;
+pub mod html;
 pub mod timeline;
 
 pub use apng::encode_apng;
 pub use gif::encode_gif;
+pub use html::{preview_html, PreviewMesh};
 pub use timeline::{Easing, Playback, Timeline};
