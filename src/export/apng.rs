@@ -82,7 +82,7 @@ fn rational_seconds(seconds: f64) -> (u16, u16) {
         let (p2, q2) = (a_int * p1 + p0, a_int * q1 + q0);
         if a >= MAX as f64 || p2 > MAX || q2 > MAX {
             // The best semiconvergent t·(p1, q1) + (p0, q0) that still fits, if it beats (p1, q1).
-            let fit = |x0: u64, x1: u64| if x1 == 0 { u64::MAX } else { (MAX - x0) / x1 };
+            let fit = |x0: u64, x1: u64| (MAX - x0).checked_div(x1).unwrap_or(u64::MAX);
             let t = fit(p0, p1).min(fit(q0, q1));
             if t >= 1 {
                 let (ps, qs) = (t * p1 + p0, t * q1 + q0);

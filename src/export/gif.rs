@@ -9,7 +9,7 @@
 //!   default), because a 1-bit alpha mask would turn the partially covered pixels along
 //!   antialiased edges into a dark or ragged fringe.
 //! - **One global palette.** Built once from pixels of all frames (exactly, when the animation
-//!   has at most 256 colours; with NeuQuant otherwise), so a colour maps to the same index in
+//!   has at most 256 colours; with `NeuQuant` otherwise), so a colour maps to the same index in
 //!   every frame and flat areas do not shimmer as per-frame palettes would.
 //! - **Timing.** See [`playback_schedule`]: delays of at least 2 cs (browsers replace shorter
 //!   ones by 100 ms), cumulative rounding so that the period stays right, and skipped frames
@@ -30,10 +30,10 @@ use crate::{Error, Result};
 /// Shortest delay browsers honour: GIF delays of 0 or 1 cs are replaced by 100 ms.
 const GIF_MIN_DELAY: f64 = 0.02;
 
-/// At most this many pixels train the NeuQuant palette (spread over all frames).
+/// At most this many pixels train the `NeuQuant` palette (spread over all frames).
 const PALETTE_SAMPLE: usize = 1 << 19;
 
-/// NeuQuant's sampling factor: 1 is best and slowest, 10 the usual compromise.
+/// `NeuQuant`'s sampling factor: 1 is best and slowest, 10 the usual compromise.
 const NEUQUANT_SAMPLEFAC: i32 = 10;
 
 /// One frame as shown in one period of playback.
@@ -283,12 +283,12 @@ struct Palette {
 enum Lookup {
     /// Every colour of the animation is in the table (at most 256 in all).
     Exact(HashMap<[u8; 3], u8>),
-    /// A NeuQuant network trained on a sample; pixels map to its nearest colour.
+    /// A `NeuQuant` network trained on a sample; pixels map to its nearest colour.
     Quantized(color_quant::NeuQuant),
 }
 
 impl Palette {
-    /// The exact colours when there are at most 256 of them, else a NeuQuant palette trained on
+    /// The exact colours when there are at most 256 of them, else a `NeuQuant` palette trained on
     /// an even sample of pixels of all frames (so that every frame shares it).
     fn build(frames: &[Vec<u8>]) -> Palette {
         if let Some(colours) = distinct_colours(frames, 256) {

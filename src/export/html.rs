@@ -533,22 +533,91 @@ mod tests {
         assert!(p.contains("\"edges\": []"));
     }
 
+    /// A stand-in for the browser objects the script touches, enough to drive it from Node: a
+    /// paused SMIL clock, elements with attributes, and event listeners.
+    const FAKE_DOM: &str = r##"
+function El(id) { this.id = id; this.attrs = {}; this.style = {}; this.handlers = {};
+  this.value = "0"; this.checked = false; this.disabled = false; this.textContent = ""; }
+El.prototype.setAttribute = function (k, v) { this.attrs[k] = String(v); };
+El.prototype.addEventListener = function (k, f) { this.handlers[k] = f; };
+El.prototype.fire = function (k) { this.handlers[k]({ type: k }); };
+var svg = new El("svg"); svg.namespaceURI = "ns"; svg.children = []; svg.clock = 0.7;
+svg.paused = false;
+svg.appendChild = function (c) { this.children.push(c); };
+svg.pauseAnimations = function () { this.paused = true; };
+svg.unpauseAnimations = function () { this.paused = false; };
+svg.setCurrentTime = function (s) { this.clock = s; };
+svg.getCurrentTime = function () { return this.clock; };
+var els = {};
+["crmorph-play", "crmorph-time", "crmorph-t", "crmorph-mesh"].forEach(function (id) {
+  els[id] = new El(id); });
+var document = { querySelector: function () { return svg; },
+  getElementById: function (id) { return els[id]; },
+  createElementNS: function () { return new El("path"); } };
+var requestAnimationFrame = function () {};
+"##;
+
+    /// What the harness prints after driving the page: `label|d|button|paused|clock`.
+    const DRIVE: &str = r##"
+els["crmorph-mesh"].checked = true;
+els["crmorph-mesh"].fire("change");
+els["crmorph-time"].value = "0.5";
+els["crmorph-time"].fire("input");
+var o = svg.children[0];
+console.log([els["crmorph-t"].textContent, o.attrs.d, els["crmorph-play"].textContent,
+  svg.paused, svg.clock, o.attrs["vector-effect"]].join("|"));
+"##;
+
+    /// Runs `js` with Node; `None` when Node is not installed.
+    fn node(js: &str, check_only: bool) -> Option<(bool, String)> {
+        let dir = std::env::temp_dir().join(format!(
+            "crmorph-html-{}-{}",
+            std::process::id(),
+            check_only
+        ));
+        std::fs::create_dir_all(&dir).ok()?;
+        let file = dir.join("page.js");
+        std::fs::write(&file, js).ok()?;
+        let mut cmd = std::process::Command::new("node");
+        if check_only {
+            cmd.arg("--check");
+        }
+        let out = cmd.arg(&file).output();
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = out.ok()?;
+        let text = String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr);
+        Some((out.status.success(), text))
+    }
+
+    fn script_of(p: &str) -> &str {
+        let start = p.find("<script>\n").unwrap() + 9;
+        &p[start..p.find("</script>").unwrap()]
+    }
+
     #[test]
     fn script_parses_with_node_when_available() {
         let p = page("m", 40, Playback::Once);
-        let start = p.find("<script>\n").unwrap() + 9;
-        let end = p.find("</script>").unwrap();
-        let dir = std::env::temp_dir().join(format!("crmorph-html-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let file = dir.join("page.js");
-        std::fs::write(&file, &p[start..end]).unwrap();
-        let status = std::process::Command::new("node")
-            .arg("--check")
-            .arg(&file)
-            .status();
-        let _ = std::fs::remove_dir_all(&dir);
-        if let Ok(status) = status {
-            assert!(status.success(), "node --check rejected the page script");
+        if let Some((ok, msg)) = node(script_of(&p), true) {
+            assert!(ok, "node --check rejected the page script: {msg}");
         }
+    }
+
+    #[test]
+    fn slider_input_scrubs_and_redraws_the_mesh_when_node_is_available() {
+        // Timeline: 2 s; the slider at 0.5 sets the SVG clock to 1 s and pauses it.
+        let p = page("m", 100, Playback::Loop);
+        let js = format!("{FAKE_DOM}{}{DRIVE}", script_of(&p));
+        let Some((ok, out)) = node(&js, false) else {
+            return;
+        };
+        assert!(ok, "{out}");
+        let f: Vec<&str> = out.trim().split('|').collect();
+        assert_eq!(f[0], "t = 0.500");
+        assert_eq!(&f[2..], ["Play", "true", "1", "non-scaling-stroke"]);
+        // The square moved halfway (dx = 5), its y offset rounded to the 0.01 step.
+        let d = f[1];
+        assert_eq!(d.matches('M').count(), 5, "{d}");
+        assert!(d.starts_with("M5 0.12L15 0.12"), "{d}");
     }
 }
