@@ -1,9 +1,16 @@
 //! The morph as an animated PNG (APNG): full 8-bit alpha and true colour, so unlike the GIF it
 //! needs no background and no palette; delays are exact fractions of a second.
+//!
+//! The container is assembled here (signature, `IHDR`, `acTL`, then per frame `fcTL` and
+//! `IDAT`/`fdAT`, `IEND`) so that frames compress in parallel: each frame's pixels are
+//! compressed on their own by the png crate (as a standalone PNG whose `IDAT` stream is exactly
+//! the frame's image data), and after the first frame only the rectangle that changed is stored
+//! (blend `SOURCE` replaces it, alpha included; dispose `NONE` keeps the rest).
 
+use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
-use super::gif::{check_frames, playback_schedule};
+use super::gif::{changed_rect, check_frames, playback_schedule};
 use super::Timeline;
 use crate::render::straight_rgba;
 use crate::{Error, Result};
@@ -21,7 +28,8 @@ const APNG_MIN_DELAY: f64 = 0.011;
 /// and denominator (exact for intervals such as `2 s / 59`). When the interval is 10 ms or less,
 /// frames are skipped evenly rather than slowed down by browsers, keeping the source and target
 /// frames (only the target's own last interval, before the end or the restart, is then
-/// lengthened to 11 ms); identical consecutive frames merge into one longer delay. Output is deterministic.
+/// lengthened to 11 ms); identical consecutive frames merge into one longer delay. Output is
+/// deterministic.
 ///
 /// Errors (internal): no frames, a frame count other than the timeline's, or frames of
 /// different sizes.
@@ -39,26 +47,140 @@ pub fn encode_apng(frames: &[Pixmap], timeline: &Timeline) -> Result<Vec<u8>> {
         }
     }
 
-    let err = |e: png::EncodingError| Error::internal(format!("APNG encoding failed: {e}"));
-    let mut out = Vec::new();
-    let mut enc = png::Encoder::new(&mut out, w, h);
-    enc.set_color(png::ColorType::Rgba);
-    enc.set_depth(png::BitDepth::Eight);
-    let plays = if tl.repeats() { 0 } else { 1 };
-    enc.set_animated(pieces.len() as u32, plays).map_err(err)?;
-    enc.set_blend_op(png::BlendOp::Source).map_err(err)?;
-    enc.set_dispose_op(png::DisposeOp::None).map_err(err)?;
-    let mut writer = enc.write_header().map_err(err)?;
-    for &(frame, intervals) in &pieces {
+    // Each piece's changed rectangle, compressed in parallel.
+    let (wu, hu) = (w as usize, h as usize);
+    let encoded: Vec<Result<(Rect, Vec<u8>)>> = pieces
+        .par_iter()
+        .enumerate()
+        .map(|(k, &(frame, _))| {
+            let prev = (k > 0).then(|| frames[pieces[k - 1].0].pixels());
+            let (x0, y0, x1, y1) = changed_rect(prev, frames[frame].pixels(), wu, hu);
+            let rgba = straight_rgba(&frames[frame]);
+            let mut crop = Vec::with_capacity(4 * (x1 - x0) * (y1 - y0));
+            for y in y0..y1 {
+                crop.extend_from_slice(&rgba[4 * (y * wu + x0)..4 * (y * wu + x1)]);
+            }
+            let rect = Rect {
+                x: x0 as u32,
+                y: y0 as u32,
+                w: (x1 - x0) as u32,
+                h: (y1 - y0) as u32,
+            };
+            Ok((rect, compressed_image_data(&crop, rect.w, rect.h)?))
+        })
+        .collect();
+
+    let mut out = Vec::with_capacity(encoded.iter().flatten().map(|e| e.1.len() + 64).sum());
+    out.extend_from_slice(b"\x89PNG\r\n\x1a\n");
+    let mut ihdr = Vec::with_capacity(13);
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 6, 0, 0, 0]); // 8-bit RGBA, deflate, adaptive filters, no interlace
+    chunk(&mut out, b"IHDR", &ihdr);
+    let plays: u32 = if tl.repeats() { 0 } else { 1 };
+    let mut actl = (pieces.len() as u32).to_be_bytes().to_vec();
+    actl.extend_from_slice(&plays.to_be_bytes());
+    chunk(&mut out, b"acTL", &actl);
+    let mut sequence = 0u32;
+    for (k, (e, &(_, intervals))) in encoded.into_iter().zip(&pieces).enumerate() {
+        let (rect, data) = e?;
         // Only the target's last interval (once / loop) can be shorter than the minimum.
         let (num, den) = rational_seconds((intervals as f64 * interval).max(APNG_MIN_DELAY));
-        writer.set_frame_delay(num, den).map_err(err)?;
-        writer
-            .write_image_data(&straight_rgba(&frames[frame]))
-            .map_err(err)?;
+        let mut fctl = Vec::with_capacity(26);
+        for v in [sequence, rect.w, rect.h, rect.x, rect.y] {
+            fctl.extend_from_slice(&v.to_be_bytes());
+        }
+        fctl.extend_from_slice(&num.to_be_bytes());
+        fctl.extend_from_slice(&den.to_be_bytes());
+        fctl.extend_from_slice(&[0, 0]); // dispose NONE, blend SOURCE
+        chunk(&mut out, b"fcTL", &fctl);
+        sequence += 1;
+        if k == 0 {
+            chunk(&mut out, b"IDAT", &data);
+        } else {
+            let mut fdat = Vec::with_capacity(data.len() + 4);
+            fdat.extend_from_slice(&sequence.to_be_bytes());
+            fdat.extend_from_slice(&data);
+            chunk(&mut out, b"fdAT", &fdat);
+            sequence += 1;
+        }
     }
-    writer.finish().map_err(err)?;
+    chunk(&mut out, b"IEND", &[]);
     Ok(out)
+}
+
+/// A frame's region on the canvas, in pixels.
+#[derive(Debug, Clone, Copy)]
+struct Rect {
+    x: u32,
+    y: u32,
+    w: u32,
+    h: u32,
+}
+
+/// The zlib stream of filtered scanlines of a `w × h` straight-RGBA image: the concatenated
+/// `IDAT` data of that image encoded as a standalone PNG.
+fn compressed_image_data(rgba: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
+    let err = |e: png::EncodingError| Error::internal(format!("APNG encoding failed: {e}"));
+    let mut png_bytes = Vec::new();
+    let mut enc = png::Encoder::new(&mut png_bytes, w, h);
+    enc.set_color(png::ColorType::Rgba);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().map_err(err)?;
+    writer.write_image_data(rgba).map_err(err)?;
+    writer.finish().map_err(err)?;
+    let mut data = Vec::new();
+    let mut pos = 8;
+    while pos + 12 <= png_bytes.len() {
+        let len = u32::from_be_bytes([
+            png_bytes[pos],
+            png_bytes[pos + 1],
+            png_bytes[pos + 2],
+            png_bytes[pos + 3],
+        ]) as usize;
+        let body = pos + 8..(pos + 8 + len).min(png_bytes.len());
+        if &png_bytes[pos + 4..pos + 8] == b"IDAT" {
+            data.extend_from_slice(&png_bytes[body]);
+        }
+        pos += 12 + len;
+    }
+    Ok(data)
+}
+
+/// Appends one PNG chunk: length, type, data, CRC-32 of type and data.
+fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+    out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+    out.extend_from_slice(kind);
+    out.extend_from_slice(data);
+    let crc = crc32(crc32(!0, kind), data);
+    out.extend_from_slice(&(!crc).to_be_bytes());
+}
+
+/// The CRC-32 (ISO-HDLC, as PNG uses) register after feeding `bytes` into `crc`.
+fn crc32(mut crc: u32, bytes: &[u8]) -> u32 {
+    const TABLE: [u32; 256] = {
+        let mut t = [0u32; 256];
+        let mut n = 0;
+        while n < 256 {
+            let mut c = n as u32;
+            let mut k = 0;
+            while k < 8 {
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+                k += 1;
+            }
+            t[n] = c;
+            n += 1;
+        }
+        t
+    };
+    for &b in bytes {
+        crc = TABLE[((crc ^ b as u32) & 0xFF) as usize] ^ (crc >> 8);
+    }
+    crc
 }
 
 /// The fraction `num / den` closest to `seconds` with both parts in `u16` (APNG's `fcTL` delay):
@@ -135,13 +257,29 @@ mod tests {
     fn decode(bytes: &[u8]) -> Decoded {
         let mut r = png::Decoder::new(Cursor::new(bytes)).read_info().unwrap();
         let actl = r.info().animation_control.unwrap();
-        let mut buf = vec![0; r.output_buffer_size().unwrap()];
+        let w = r.info().width as usize;
+        let mut canvas = vec![0; r.output_buffer_size().unwrap()];
+        let mut buf = canvas.clone();
         let (mut delays, mut images) = (vec![], vec![]);
         for _ in 0..actl.num_frames {
             let out = r.next_frame(&mut buf).unwrap();
             let fc = r.info().frame_control.unwrap();
             delays.push((fc.delay_num, fc.delay_den));
-            images.push(buf[..out.buffer_size()].to_vec());
+            // Blend SOURCE, dispose NONE: the sub-frame replaces its rectangle.
+            assert_eq!(
+                (fc.blend_op, fc.dispose_op),
+                (png::BlendOp::Source, png::DisposeOp::None)
+            );
+            let (fx, fy, fw) = (
+                fc.x_offset as usize,
+                fc.y_offset as usize,
+                out.width as usize,
+            );
+            for y in 0..out.height as usize {
+                let dst = 4 * ((fy + y) * w + fx);
+                canvas[dst..dst + 4 * fw].copy_from_slice(&buf[4 * y * fw..4 * (y + 1) * fw]);
+            }
+            images.push(canvas.clone());
         }
         Decoded {
             num_frames: actl.num_frames,
@@ -219,6 +357,17 @@ mod tests {
         }
         let (n, q) = rational_seconds(1e-6);
         assert!(n as f64 / q as f64 <= 2e-5 && q > 0);
+    }
+
+    #[test]
+    fn chunks_carry_png_crcs() {
+        // The CRC of the IEND chunk every PNG ends with.
+        let mut out = Vec::new();
+        chunk(&mut out, b"IEND", &[]);
+        assert_eq!(
+            out,
+            [0, 0, 0, 0, b'I', b'E', b'N', b'D', 0xAE, 0x42, 0x60, 0x82]
+        );
     }
 
     #[test]

@@ -242,11 +242,12 @@ fn composite_rgb(frame: &Pixmap, bg: [u8; 3]) -> Vec<u8> {
     out
 }
 
-/// The bounding rectangle `(x0, y0, x1, y1)` (exclusive ends) of the pixels that differ from
-/// the previous frame; the whole frame for the first one, one pixel for an unchanged one.
-fn changed_rect(
-    prev: Option<&[u8]>,
-    cur: &[u8],
+/// The bounding rectangle `(x0, y0, x1, y1)` (exclusive ends) of the pixels of a `w × h` frame
+/// that differ from the previous frame; the whole frame for the first one, one pixel for an
+/// unchanged one.
+pub(crate) fn changed_rect<T: PartialEq>(
+    prev: Option<&[T]>,
+    cur: &[T],
     w: usize,
     h: usize,
 ) -> (usize, usize, usize, usize) {
