@@ -152,15 +152,26 @@ pub fn encode_gif(
     let schedule = playback_schedule(&tl, GIF_MIN_DELAY);
     let bg = opaque_background(background);
 
-    // Composite each frame that is shown (yoyo shows most of them twice) once.
+    // Two passes over the frames that are shown (yoyo shows most of them twice), compositing
+    // each one again rather than keeping them all in RGB: colour statistics, then indices.
     let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
     let used: Vec<usize> = used.into_iter().collect();
-    let rgb: Vec<Vec<u8>> = used
+    let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
+    let stats: Vec<FrameColours> = used
         .par_iter()
-        .map(|&i| composite_rgb(&frames[i], bg))
+        .map(|&i| {
+            let rgb = composite_rgb(&frames[i], bg);
+            FrameColours {
+                distinct: frame_colours(&rgb, 256),
+                sample: sample_rgba(&rgb, per_frame, i as u64),
+            }
+        })
         .collect();
-    let palette = Palette::build(&rgb);
-    let indexed: Vec<Vec<u8>> = rgb.par_iter().map(|f| palette.map(f)).collect();
+    let palette = Palette::build(stats);
+    let indexed: Vec<Vec<u8>> = used
+        .par_iter()
+        .map(|&i| palette.map(&composite_rgb(&frames[i], bg)))
+        .collect();
     let slot: HashMap<usize, usize> = used.iter().enumerate().map(|(k, &i)| (i, k)).collect();
 
     // Delays by cumulative rounding, at least 2 cs each.
@@ -273,6 +284,14 @@ pub(crate) fn changed_rect<T: PartialEq>(
     }
 }
 
+/// What the palette needs to know of one frame.
+struct FrameColours {
+    /// Its distinct colours, `None` when there are more than 256.
+    distinct: Option<HashSet<[u8; 3]>>,
+    /// A sample of its pixels as opaque RGBA.
+    sample: Vec<u8>,
+}
+
 /// The animation's global colour table and how to find a colour's index in it.
 struct Palette {
     /// Packed RGB triples, at most 256.
@@ -290,20 +309,35 @@ enum Lookup {
 
 impl Palette {
     /// The exact colours when there are at most 256 of them, else a `NeuQuant` palette trained on
-    /// an even sample of pixels of all frames (so that every frame shares it).
-    fn build(frames: &[Vec<u8>]) -> Palette {
-        if let Some(colours) = distinct_colours(frames, 256) {
+    /// the pixel samples of all frames (so that every frame shares it).
+    fn build(stats: Vec<FrameColours>) -> Palette {
+        let mut all = Some(BTreeSet::new());
+        let mut sample = Vec::new();
+        for FrameColours {
+            distinct,
+            sample: s,
+        } in stats
+        {
+            all = match (all, distinct) {
+                (Some(mut all), Some(c)) => {
+                    all.extend(c);
+                    (all.len() <= 256).then_some(all)
+                }
+                _ => None,
+            };
+            sample.extend_from_slice(&s);
+        }
+        if let Some(colours) = all {
             let lookup = colours
                 .iter()
                 .enumerate()
                 .map(|(i, &c)| (c, i as u8))
                 .collect();
             return Palette {
-                colours: colours.concat(),
+                colours: colours.into_iter().flatten().collect(),
                 lookup: Lookup::Exact(lookup),
             };
         }
-        let sample = sample_rgba(frames, PALETTE_SAMPLE);
         let nq = color_quant::NeuQuant::new(NEUQUANT_SAMPLEFAC, 256, &sample);
         Palette {
             colours: nq.color_map_rgb(),
@@ -326,58 +360,33 @@ impl Palette {
     }
 }
 
-/// The distinct colours of all frames in ascending order, or `None` when there are more than
+/// The distinct colours of one frame's packed RGB pixels, or `None` when there are more than
 /// `limit`.
-fn distinct_colours(frames: &[Vec<u8>], limit: usize) -> Option<Vec<[u8; 3]>> {
-    let per_frame: Option<Vec<HashSet<[u8; 3]>>> = frames
-        .par_iter()
-        .map(|f| {
-            let mut set = HashSet::new();
-            for c in f.chunks_exact(3) {
-                set.insert([c[0], c[1], c[2]]);
-                if set.len() > limit {
-                    return None;
-                }
-            }
-            Some(set)
-        })
-        .collect();
-    let mut all = BTreeSet::new();
-    for set in per_frame? {
-        all.extend(set);
-        if all.len() > limit {
+fn frame_colours(rgb: &[u8], limit: usize) -> Option<HashSet<[u8; 3]>> {
+    let mut set = HashSet::new();
+    for c in rgb.chunks_exact(3) {
+        if set.insert([c[0], c[1], c[2]]) && set.len() > limit {
             return None;
         }
     }
-    Some(all.into_iter().collect())
+    Some(set)
 }
 
-/// About `max` opaque RGBA pixels spread evenly over all frames, with a deterministic jitter
-/// so that the sample does not line up with the image columns.
-fn sample_rgba(frames: &[Vec<u8>], max: usize) -> Vec<u8> {
-    let total: usize = frames.iter().map(|f| f.len() / 3).sum();
-    let stride = total.div_ceil(max.max(1)).max(1);
-    let mut out = Vec::with_capacity(4 * total.div_ceil(stride));
-    let mut hash: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = 0usize;
-    let mut base = 0usize;
-    for f in frames {
-        let len = f.len() / 3;
-        while next < base + len {
-            let i = next - base;
-            out.extend_from_slice(&[f[3 * i], f[3 * i + 1], f[3 * i + 2], 255]);
-            // xorshift64 for the jitter within the next stride.
-            hash ^= hash << 13;
-            hash ^= hash >> 7;
-            hash ^= hash << 17;
-            let jitter = if stride > 1 {
-                (hash % stride as u64) as usize
-            } else {
-                0
-            };
-            next = (next / stride + 1) * stride + jitter;
-        }
-        base += len;
+/// About `max` of one frame's pixels as opaque RGBA, spread evenly over it with a jitter
+/// (deterministic, from `seed`) so that the sample does not line up with the image columns.
+fn sample_rgba(rgb: &[u8], max: usize, seed: u64) -> Vec<u8> {
+    let len = rgb.len() / 3;
+    let stride = len.div_ceil(max.max(1)).max(1);
+    let mut out = Vec::with_capacity(4 * len.div_ceil(stride));
+    let mut hash: u64 = 0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    let mut i = 0;
+    while i < len {
+        out.extend_from_slice(&[rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 255]);
+        // xorshift64 for the jitter within the next stride.
+        hash ^= hash << 13;
+        hash ^= hash >> 7;
+        hash ^= hash << 17;
+        i = (i / stride + 1) * stride + (hash % stride as u64) as usize;
     }
     out
 }
