@@ -19,11 +19,7 @@ pub enum Easing {
 impl Easing {
     /// The morph's progress at animation time `tau` in [0, 1]; exactly 0 at 0 and 1 at 1.
     pub fn apply(self, tau: f64) -> f64 {
-        let tau = if tau.is_nan() {
-            0.0
-        } else {
-            tau.clamp(0.0, 1.0)
-        };
+        let tau = if tau.is_nan() { 0.0 } else { tau.clamp(0.0, 1.0) };
         match self {
             Easing::Linear => tau,
             Easing::EaseInOut => tau * tau * (3.0 - 2.0 * tau),
