@@ -1,9 +1,16 @@
 //! Exporting a morph as an animation: the shared [`Timeline`] (frame times, easing, playback),
-//! and the encoders that turn rendered frames into files users play (the end of DESIGN.md §2:
-//! frames → GIF · APNG · HTML preview; the animated SVG writer lives in [`crate::render`]).
+//! [`Morph`] (built once, any frame or animation after), and the encoders that turn rendered
+//! frames into files users play (the end of DESIGN.md §2: frames → GIF · APNG · HTML preview;
+//! the animated SVG writer lives in [`crate::render`]).
 
+pub mod apng;
+pub mod gif;
+pub mod html;
 pub mod morph;
 pub mod timeline;
 
+pub use apng::encode_apng;
+pub use gif::encode_gif;
+pub use html::{preview_html, PreviewMesh};
 pub use morph::Morph;
 pub use timeline::{Easing, Playback, Timeline};

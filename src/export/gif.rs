@@ -1,0 +1,613 @@
+//! The morph as an animated GIF: rendered frames composited onto an opaque background, one
+//! global palette for the whole animation, delays in centiseconds that keep the period right.
+//!
+//! GIF is the most widely playable animation format but a poor fit for antialiased vector art:
+//! 256 colours and 1-bit transparency. The choices below trade file size for an animation that
+//! neither flickers nor drifts in time:
+//!
+//! - **Opaque frames.** Every frame is composited over the background colour (white by
+//!   default), because a 1-bit alpha mask would turn the partially covered pixels along
+//!   antialiased edges into a dark or ragged fringe.
+//! - **One global palette.** Built once from pixels of all frames (exactly, when the animation
+//!   has at most 256 colours; with `NeuQuant` otherwise), so a colour maps to the same index in
+//!   every frame and flat areas do not shimmer as per-frame palettes would.
+//! - **Timing.** See [`playback_schedule`]: delays of at least 2 cs (browsers replace shorter
+//!   ones by 100 ms), cumulative rounding so that the period stays right, and skipped frames
+//!   rather than a slower morph when the frame interval is under 20 ms.
+//! - **Small files.** After the first frame only the rectangle that changed is stored (frames
+//!   are opaque, so each one simply draws over the last); identical consecutive frames merge
+//!   into one longer delay.
+
+use std::collections::{BTreeSet, HashMap, HashSet};
+
+use rayon::prelude::*;
+use tiny_skia::Pixmap;
+
+use super::Timeline;
+use crate::artwork::Rgba;
+use crate::{Error, Result};
+
+/// Shortest delay browsers honour: GIF delays of 0 or 1 cs are replaced by 100 ms.
+const GIF_MIN_DELAY: f64 = 0.02;
+
+/// At most this many pixels train the `NeuQuant` palette (spread over all frames).
+const PALETTE_SAMPLE: usize = 1 << 19;
+
+/// `NeuQuant`'s sampling factor: 1 is best and slowest, 10 the usual compromise.
+const NEUQUANT_SAMPLEFAC: i32 = 10;
+
+/// One frame as shown in one period of playback.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Shown {
+    /// Index of the frame (into `timeline.times()`).
+    pub(crate) frame: usize,
+    /// Position in [`Timeline::sequence`] where it starts: its start time is
+    /// `start · frame_interval`.
+    pub(crate) start: usize,
+    /// How many frame intervals it stays on screen.
+    pub(crate) intervals: usize,
+}
+
+/// Which frames of one period of playback are shown, and for how long, when no frame may be
+/// shown for less than `min_delay` seconds (animated image formats: browsers show frames with a
+/// delay of 10 ms or less for 100 ms, which would slow the morph down instead).
+///
+/// When the frame interval is long enough this is [`Timeline::sequence`], one interval each.
+/// Otherwise frames are skipped — evenly within each run between the source and the target, and
+/// never the source or target frame themselves (the ends of every forward or backward run) — so
+/// that the kept frames are at least `min_delay` apart and the period is unchanged. Each frame
+/// is shown for one interval, so one period lasts `sequence().len() · frame_interval()`: exactly
+/// [`Timeline::period`] for yoyo, and one interval more for once or loop (the target stays on
+/// screen for one interval like every other frame before the animation ends or restarts).
+pub(crate) fn playback_schedule(timeline: &Timeline, min_delay: f64) -> Vec<Shown> {
+    let tl = timeline.sanitized();
+    let seq = tl.sequence();
+    let n = tl.frames;
+    let interval = tl.frame_interval();
+    // The smallest whole number of intervals that lasts `min_delay`.
+    let stride = if interval >= min_delay {
+        1
+    } else {
+        ((min_delay / interval) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+    };
+    // Run ends: the source and target frames, and the end of the period.
+    let mut ends: Vec<usize> = (0..seq.len())
+        .filter(|&p| seq[p] == 0 || seq[p] == n - 1)
+        .collect();
+    ends.push(seq.len());
+    let mut starts = Vec::with_capacity(seq.len());
+    for w in ends.windows(2) {
+        let (a, r) = (w[0], w[1] - w[0]);
+        let m = (r / stride).max(1);
+        // Positions a + round(j·r/m), j = 0..m: gaps of ⌊r/m⌋ or ⌈r/m⌉ ≥ stride intervals.
+        starts.extend((0..m).map(|j| a + (2 * j * r + m) / (2 * m)));
+    }
+    starts
+        .iter()
+        .enumerate()
+        .map(|(k, &start)| Shown {
+            frame: seq[start],
+            start,
+            intervals: starts.get(k + 1).copied().unwrap_or(seq.len()) - start,
+        })
+        .collect()
+}
+
+/// Checks that there is one rendered frame per timeline frame, all of one non-empty size, and
+/// returns that size.
+pub(crate) fn check_frames(frames: &[Pixmap], timeline: &Timeline) -> Result<(u32, u32)> {
+    let expected = timeline.sanitized().frames;
+    let first = frames
+        .first()
+        .ok_or_else(|| Error::internal("no frames to encode"))?;
+    if frames.len() != expected {
+        return Err(Error::internal(format!(
+            "{} rendered frames for a timeline of {expected} frames",
+            frames.len()
+        )));
+    }
+    let size = (first.width(), first.height());
+    if let Some(i) = frames.iter().position(|f| (f.width(), f.height()) != size) {
+        return Err(Error::internal(format!(
+            "frame {i} is {}×{} but frame 0 is {}×{}",
+            frames[i].width(),
+            frames[i].height(),
+            size.0,
+            size.1
+        )));
+    }
+    Ok(size)
+}
+
+/// Encodes rendered frames as an animated GIF.
+///
+/// `frames[i]` is frame `i` of `timeline` (premultiplied RGBA, all the same size); they play in
+/// [`Timeline::sequence`] order, forever when [`Timeline::repeats`], else once (no loop
+/// extension at all: that is what browsers play exactly once). Every frame is composited over
+/// `background`, or over **white** when it is `None`: GIF transparency is all-or-nothing, and
+/// the partially transparent pixels of antialiased edges would otherwise fringe. A
+/// semi-transparent background is itself flattened onto white.
+///
+/// Frame `k` of the sequence starts at `round(k · interval · 100)` cs, so the delays (at least
+/// 2 cs each) add up to the period; when the interval is under 20 ms, frames are skipped rather
+/// than the animation slowed down (see [`playback_schedule`]). Output is deterministic.
+///
+/// Errors (internal): no frames, a frame count other than the timeline's, frames of different
+/// sizes, or frames larger than GIF's 65 535 px.
+pub fn encode_gif(
+    frames: &[Pixmap],
+    timeline: &Timeline,
+    background: Option<Rgba>,
+) -> Result<Vec<u8>> {
+    let (w, h) = check_frames(frames, timeline)?;
+    let (gw, gh) = match (u16::try_from(w), u16::try_from(h)) {
+        (Ok(gw), Ok(gh)) => (gw, gh),
+        _ => {
+            return Err(Error::internal(format!(
+                "{w}×{h} frames exceed GIF's 65535 px limit"
+            )))
+        }
+    };
+    let tl = timeline.sanitized();
+    let schedule = playback_schedule(&tl, GIF_MIN_DELAY);
+    let bg = opaque_background(background);
+
+    // Two passes over the frames that are shown (yoyo shows most of them twice), compositing
+    // each one again rather than keeping them all in RGB: colour statistics, then indices.
+    let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
+    let used: Vec<usize> = used.into_iter().collect();
+    let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
+    let stats: Vec<FrameColours> = used
+        .par_iter()
+        .map(|&i| {
+            let rgb = composite_rgb(&frames[i], bg);
+            FrameColours {
+                distinct: frame_colours(&rgb, 256),
+                sample: sample_rgba(&rgb, per_frame, i as u64),
+            }
+        })
+        .collect();
+    let palette = Palette::build(stats);
+    let indexed: Vec<Vec<u8>> = used
+        .par_iter()
+        .map(|&i| palette.map(&composite_rgb(&frames[i], bg)))
+        .collect();
+    let slot: HashMap<usize, usize> = used.iter().enumerate().map(|(k, &i)| (i, k)).collect();
+
+    // Delays by cumulative rounding, at least 2 cs each.
+    let interval = tl.frame_interval();
+    let cs = |pos: usize| (pos as f64 * interval * 100.0).round();
+    let mut clock = 0.0;
+    let mut pieces: Vec<(usize, f64)> = Vec::with_capacity(schedule.len());
+    for s in &schedule {
+        let delay = (cs(s.start + s.intervals) - clock).max(2.0);
+        clock += delay;
+        let buf = slot[&s.frame];
+        match pieces.last_mut() {
+            Some((prev, d)) if indexed[*prev] == indexed[buf] => *d += delay,
+            _ => pieces.push((buf, delay)),
+        }
+    }
+
+    // Each frame after the first stores only the rectangle that changed; LZW in parallel.
+    let mut gif_frames: Vec<gif::Frame<'static>> = pieces
+        .par_iter()
+        .enumerate()
+        .map(|(k, &(buf, delay))| {
+            let prev = (k > 0).then(|| indexed[pieces[k - 1].0].as_slice());
+            let (x0, y0, x1, y1) = changed_rect(prev, &indexed[buf], w as usize, h as usize);
+            let mut pixels = Vec::with_capacity((x1 - x0) * (y1 - y0));
+            for y in y0..y1 {
+                pixels.extend_from_slice(&indexed[buf][y * w as usize + x0..y * w as usize + x1]);
+            }
+            let mut f = gif::Frame {
+                delay: delay.min(u16::MAX as f64) as u16,
+                dispose: gif::DisposalMethod::Keep,
+                left: x0 as u16,
+                top: y0 as u16,
+                width: (x1 - x0) as u16,
+                height: (y1 - y0) as u16,
+                buffer: pixels.into(),
+                ..gif::Frame::default()
+            };
+            f.make_lzw_pre_encoded();
+            f
+        })
+        .collect();
+
+    let err = |e: gif::EncodingError| Error::internal(format!("GIF encoding failed: {e}"));
+    let mut enc = gif::Encoder::new(Vec::new(), gw, gh, &palette.colours).map_err(err)?;
+    if tl.repeats() {
+        enc.set_repeat(gif::Repeat::Infinite).map_err(err)?;
+    }
+    for f in gif_frames.iter_mut() {
+        enc.write_lzw_pre_encoded_frame(f).map_err(err)?;
+    }
+    enc.into_inner().map_err(err)
+}
+
+/// The background as an opaque colour: white for `None`, a translucent one flattened onto white.
+fn opaque_background(background: Option<Rgba>) -> [u8; 3] {
+    let c = background.unwrap_or(Rgba {
+        r: 255,
+        g: 255,
+        b: 255,
+        a: 255,
+    });
+    let over_white = |v: u8| ((v as u32 * c.a as u32 + 255 * (255 - c.a as u32) + 127) / 255) as u8;
+    [over_white(c.r), over_white(c.g), over_white(c.b)]
+}
+
+/// A premultiplied pixmap composited over an opaque colour, as packed RGB bytes.
+fn composite_rgb(frame: &Pixmap, bg: [u8; 3]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(frame.width() as usize * frame.height() as usize * 3);
+    for p in frame.pixels() {
+        let rest = 255 - p.alpha() as u32;
+        let over = |c: u8, b: u8| (c as u32 + (b as u32 * rest + 127) / 255).min(255) as u8;
+        out.extend_from_slice(&[
+            over(p.red(), bg[0]),
+            over(p.green(), bg[1]),
+            over(p.blue(), bg[2]),
+        ]);
+    }
+    out
+}
+
+/// The bounding rectangle `(x0, y0, x1, y1)` (exclusive ends) of the pixels of a `w × h` frame
+/// that differ from the previous frame; the whole frame for the first one, one pixel for an
+/// unchanged one.
+pub(crate) fn changed_rect<T: PartialEq>(
+    prev: Option<&[T]>,
+    cur: &[T],
+    w: usize,
+    h: usize,
+) -> (usize, usize, usize, usize) {
+    let Some(prev) = prev else {
+        return (0, 0, w, h);
+    };
+    let (mut x0, mut y0, mut x1, mut y1) = (w, h, 0, 0);
+    for y in 0..h {
+        let (a, b) = (&prev[y * w..(y + 1) * w], &cur[y * w..(y + 1) * w]);
+        let Some(first) = (0..w).find(|&x| a[x] != b[x]) else {
+            continue;
+        };
+        let last = (first..w).rev().find(|&x| a[x] != b[x]).unwrap_or(first);
+        x0 = x0.min(first);
+        x1 = x1.max(last + 1);
+        y0 = y0.min(y);
+        y1 = y + 1;
+    }
+    if x1 == 0 {
+        (0, 0, 1, 1)
+    } else {
+        (x0, y0, x1, y1)
+    }
+}
+
+/// What the palette needs to know of one frame.
+struct FrameColours {
+    /// Its distinct colours, `None` when there are more than 256.
+    distinct: Option<HashSet<[u8; 3]>>,
+    /// A sample of its pixels as opaque RGBA.
+    sample: Vec<u8>,
+}
+
+/// The animation's global colour table and how to find a colour's index in it.
+struct Palette {
+    /// Packed RGB triples, at most 256.
+    colours: Vec<u8>,
+    /// How pixels map to indices.
+    lookup: Lookup,
+}
+
+enum Lookup {
+    /// Every colour of the animation is in the table (at most 256 in all).
+    Exact(HashMap<[u8; 3], u8>),
+    /// A `NeuQuant` network trained on a sample; pixels map to its nearest colour.
+    Quantized(color_quant::NeuQuant),
+}
+
+impl Palette {
+    /// The exact colours when there are at most 256 of them, else a `NeuQuant` palette trained on
+    /// the pixel samples of all frames (so that every frame shares it).
+    fn build(stats: Vec<FrameColours>) -> Palette {
+        let mut all = Some(BTreeSet::new());
+        let mut sample = Vec::new();
+        for FrameColours {
+            distinct,
+            sample: s,
+        } in stats
+        {
+            all = match (all, distinct) {
+                (Some(mut all), Some(c)) => {
+                    all.extend(c);
+                    (all.len() <= 256).then_some(all)
+                }
+                _ => None,
+            };
+            sample.extend_from_slice(&s);
+        }
+        if let Some(colours) = all {
+            let lookup = colours
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| (c, i as u8))
+                .collect();
+            return Palette {
+                colours: colours.into_iter().flatten().collect(),
+                lookup: Lookup::Exact(lookup),
+            };
+        }
+        let nq = color_quant::NeuQuant::new(NEUQUANT_SAMPLEFAC, 256, &sample);
+        Palette {
+            colours: nq.color_map_rgb(),
+            lookup: Lookup::Quantized(nq),
+        }
+    }
+
+    /// One frame's packed RGB pixels as palette indices.
+    fn map(&self, rgb: &[u8]) -> Vec<u8> {
+        match &self.lookup {
+            Lookup::Exact(table) => rgb
+                .chunks_exact(3)
+                .map(|c| table.get(&[c[0], c[1], c[2]]).copied().unwrap_or(0))
+                .collect(),
+            Lookup::Quantized(nq) => rgb
+                .chunks_exact(3)
+                .map(|c| nq.index_of(&[c[0], c[1], c[2], 255]) as u8)
+                .collect(),
+        }
+    }
+}
+
+/// The distinct colours of one frame's packed RGB pixels, or `None` when there are more than
+/// `limit`.
+fn frame_colours(rgb: &[u8], limit: usize) -> Option<HashSet<[u8; 3]>> {
+    let mut set = HashSet::new();
+    for c in rgb.chunks_exact(3) {
+        if set.insert([c[0], c[1], c[2]]) && set.len() > limit {
+            return None;
+        }
+    }
+    Some(set)
+}
+
+/// About `max` of one frame's pixels as opaque RGBA, spread evenly over it with a jitter
+/// (deterministic, from `seed`) so that the sample does not line up with the image columns.
+fn sample_rgba(rgb: &[u8], max: usize, seed: u64) -> Vec<u8> {
+    let len = rgb.len() / 3;
+    let stride = len.div_ceil(max.max(1)).max(1);
+    let mut out = Vec::with_capacity(4 * len.div_ceil(stride));
+    let mut hash: u64 = 0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    let mut i = 0;
+    while i < len {
+        out.extend_from_slice(&[rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 255]);
+        // xorshift64 for the jitter within the next stride.
+        hash ^= hash << 13;
+        hash ^= hash >> 7;
+        hash ^= hash << 17;
+        i = (i / stride + 1) * stride + (hash % stride as u64) as usize;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::Playback;
+    use tiny_skia::{Color, Paint, Rect, Transform};
+
+    /// A `w×h` transparent pixmap with a `(r, g, b, a)` rectangle from x = `x0` to `x1`.
+    fn frame(w: u32, h: u32, x0: f32, x1: f32, rgba: [u8; 4]) -> Pixmap {
+        let mut p = Pixmap::new(w, h).unwrap();
+        let mut paint = Paint::default();
+        paint.set_color(Color::from_rgba8(rgba[0], rgba[1], rgba[2], rgba[3]));
+        paint.anti_alias = false;
+        let r = Rect::from_ltrb(x0, 0.0, x1, h as f32).unwrap();
+        p.fill_rect(r, &paint, Transform::identity(), None);
+        p
+    }
+
+    /// `n` frames of a red bar sliding from the left edge to the right edge over a transparent
+    /// background (antialiased, so that sub-pixel steps still change the frame).
+    fn sliding(n: usize) -> Vec<Pixmap> {
+        (0..n)
+            .map(|i| {
+                let x = 28.0 * i as f32 / (n - 1) as f32;
+                let mut p = Pixmap::new(32, 8).unwrap();
+                let mut paint = Paint::default();
+                paint.set_color(Color::from_rgba8(200, 30, 40, 255));
+                let r = Rect::from_ltrb(x, 0.0, x + 4.0, 8.0).unwrap();
+                p.fill_rect(r, &paint, Transform::identity(), None);
+                p
+            })
+            .collect()
+    }
+
+    struct Decoded {
+        delays: Vec<u16>,
+        /// The composed canvas after each frame, packed RGBA.
+        canvases: Vec<Vec<u8>>,
+        repeat: gif::Repeat,
+        has_loop_extension: bool,
+    }
+
+    fn decode(bytes: &[u8]) -> Decoded {
+        let mut opts = gif::DecodeOptions::new();
+        opts.set_color_output(gif::ColorOutput::RGBA);
+        let mut d = opts.read_info(bytes).unwrap();
+        let (w, h) = (d.width() as usize, d.height() as usize);
+        let mut canvas = vec![0u8; w * h * 4];
+        let (mut delays, mut canvases) = (vec![], vec![]);
+        while let Some(f) = d.read_next_frame().unwrap() {
+            delays.push(f.delay);
+            for y in 0..f.height as usize {
+                for x in 0..f.width as usize {
+                    let src = 4 * (y * f.width as usize + x);
+                    let dst = 4 * ((y + f.top as usize) * w + x + f.left as usize);
+                    canvas[dst..dst + 4].copy_from_slice(&f.buffer[src..src + 4]);
+                }
+            }
+            canvases.push(canvas.clone());
+        }
+        Decoded {
+            delays,
+            canvases,
+            repeat: d.repeat(),
+            has_loop_extension: bytes.windows(11).any(|w| w == b"NETSCAPE2.0"),
+        }
+    }
+
+    fn timeline(frames: usize, duration: f64, playback: Playback) -> Timeline {
+        Timeline {
+            frames,
+            duration,
+            playback,
+            ..Timeline::default()
+        }
+    }
+
+    #[test]
+    fn frame_counts_delays_and_looping_follow_the_playback() {
+        for (playback, shown) in [
+            (Playback::Once, 6),
+            (Playback::Loop, 6),
+            (Playback::Yoyo, 10),
+        ] {
+            let tl = timeline(6, 1.0, playback);
+            let d = decode(&encode_gif(&sliding(6), &tl, None).unwrap());
+            assert_eq!(d.delays.len(), shown, "{playback:?}");
+            assert!(d.delays.iter().all(|&c| c >= 2), "{:?}", d.delays);
+            // One interval (20 cs) per shown frame; the sum is the period (+1 interval unless yoyo).
+            let total: u32 = d.delays.iter().map(|&c| c as u32).sum();
+            let expected = (tl.sequence().len() as f64 * tl.frame_interval() * 100.0).round();
+            assert!(
+                (total as f64 - expected).abs() <= 1.0,
+                "{total} vs {expected}"
+            );
+            assert_eq!(d.has_loop_extension, tl.repeats(), "{playback:?}");
+            if tl.repeats() {
+                assert_eq!(d.repeat, gif::Repeat::Infinite);
+            }
+        }
+    }
+
+    #[test]
+    fn short_intervals_skip_frames_but_keep_the_period_and_the_ends() {
+        // 101 frames over 1 s: 10 ms apart, so every other frame is dropped.
+        let n = 101;
+        let tl = timeline(n, 1.0, Playback::Yoyo);
+        let sched = playback_schedule(&tl, GIF_MIN_DELAY);
+        assert_eq!(sched.first().unwrap().frame, 0);
+        assert!(sched.iter().any(|s| s.frame == n - 1));
+        assert!(sched.iter().all(|s| s.intervals >= 2));
+        let span: usize = sched.iter().map(|s| s.intervals).sum();
+        assert_eq!(span, tl.sequence().len());
+
+        let d = decode(&encode_gif(&sliding(n), &tl, None).unwrap());
+        assert!(d.delays.iter().all(|&c| c >= 2), "{:?}", d.delays);
+        let total: u32 = d.delays.iter().map(|&c| c as u32).sum();
+        assert_eq!(total, 200);
+        assert!(d.delays.len() <= sched.len());
+        // Interval 7 ms: stride of 3 intervals (21 ms), the period stays 0.7 s forwards.
+        let tl = timeline(101, 0.7, Playback::Once);
+        let d = decode(&encode_gif(&sliding(101), &tl, None).unwrap());
+        let total: u32 = d.delays.iter().map(|&c| c as u32).sum();
+        assert!((total as i32 - 71).abs() <= 1, "{total}");
+        assert!(d.delays.iter().all(|&c| c >= 2), "{:?}", d.delays);
+        // The last frame shown is the target (the bar at the right edge).
+        let last = d.canvases.last().unwrap();
+        let target = composite_rgb(&sliding(n)[n - 1], [255; 3]);
+        let rgb: Vec<u8> = last
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        assert_eq!(rgb, target);
+    }
+
+    #[test]
+    fn flat_colours_and_transparency_over_the_background() {
+        let tl = timeline(2, 0.5, Playback::Once);
+        let frames = vec![
+            frame(16, 4, 0.0, 8.0, [10, 120, 230, 255]),
+            frame(16, 4, 0.0, 8.0, [10, 120, 230, 128]),
+        ];
+        let bg = Rgba {
+            r: 0,
+            g: 0,
+            b: 0,
+            a: 255,
+        };
+        for (background, b) in [(None, [255u8; 3]), (Some(bg), [0u8; 3])] {
+            let d = decode(&encode_gif(&frames, &tl, background).unwrap());
+            let px = |c: &Vec<u8>, x: usize| [c[4 * x], c[4 * x + 1], c[4 * x + 2], c[4 * x + 3]];
+            assert_eq!(px(&d.canvases[0], 2), [10, 120, 230, 255]);
+            // Transparent pixels show the background, fully opaque.
+            assert_eq!(px(&d.canvases[0], 12), [b[0], b[1], b[2], 255]);
+            // Half-transparent blue over the background.
+            let got = px(&d.canvases[1], 2);
+            for (ch, c) in [10.0, 120.0, 230.0].into_iter().enumerate() {
+                let want = c * 128.0 / 255.0 + b[ch] as f64 * 127.0 / 255.0;
+                assert!((got[ch] as f64 - want).abs() <= 2.0, "{got:?} ch {ch}");
+            }
+        }
+    }
+
+    #[test]
+    fn many_colours_share_one_quantized_palette() {
+        // A horizontal gradient with more than 256 colours, moving by one pixel per frame.
+        let n = 4;
+        let frames: Vec<Pixmap> = (0..n)
+            .map(|k| {
+                let mut p = Pixmap::new(300, 4).unwrap();
+                for (i, px) in p.pixels_mut().iter_mut().enumerate() {
+                    let x = ((i % 300) + k) as u32;
+                    let c = tiny_skia::ColorU8::from_rgba(
+                        (x * 255 / 303) as u8,
+                        (255 - x * 255 / 303) as u8,
+                        ((x * 7) % 256) as u8,
+                        255,
+                    );
+                    *px = c.premultiply();
+                }
+                p
+            })
+            .collect();
+        let tl = timeline(n, 1.0, Playback::Loop);
+        let bytes = encode_gif(&frames, &tl, None).unwrap();
+        assert_eq!(
+            bytes,
+            encode_gif(&frames, &tl, None).unwrap(),
+            "deterministic"
+        );
+        let d = decode(&bytes);
+        assert_eq!(d.canvases.len(), n);
+        for (k, canvas) in d.canvases.iter().enumerate() {
+            let src = straight(&frames[k]);
+            let worst = canvas
+                .chunks_exact(4)
+                .zip(src.chunks_exact(4))
+                .flat_map(|(a, b)| (0..3).map(move |c| (a[c] as i32 - b[c] as i32).abs()))
+                .max()
+                .unwrap();
+            assert!(worst <= 40, "frame {k}: error {worst}");
+        }
+    }
+
+    fn straight(p: &Pixmap) -> Vec<u8> {
+        crate::render::straight_rgba(p)
+    }
+
+    #[test]
+    fn identical_frames_merge_and_bad_input_is_an_error() {
+        let tl = timeline(3, 0.6, Playback::Loop);
+        let same = vec![frame(8, 8, 0.0, 4.0, [0, 0, 0, 255]); 3];
+        let d = decode(&encode_gif(&same, &tl, None).unwrap());
+        assert_eq!(d.delays, vec![90], "three intervals of 30 cs in one");
+
+        assert!(encode_gif(&[], &tl, None).is_err());
+        assert!(encode_gif(&same[..2], &tl, None).is_err());
+        let mixed = vec![same[0].clone(), same[1].clone(), Pixmap::new(9, 8).unwrap()];
+        assert!(encode_gif(&mixed, &tl, None).is_err());
+    }
+}
