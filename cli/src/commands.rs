@@ -3,12 +3,13 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use crmorph::artwork::{ArtworkPair, Rgba, Scene};
+use crmorph::artwork::{Rgba, Scene};
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
-use crmorph::render::{frame_png, frame_svg, FrameOptions};
+use crmorph::export::{Easing, Morph, Playback, Timeline};
+use crmorph::render::{encode_png, FrameOptions};
 use crmorph::rigid::{Interpolator, Method};
 
 use crate::output::{refuse_overwriting_inputs, write_atomic, Format};
@@ -96,6 +97,9 @@ fn unit_f64(s: &str) -> std::result::Result<f64, String> {
 pub(crate) struct InspectArgs {
     #[command(flatten)]
     pub(crate) inputs: Inputs,
+    /// Width of a .png picture in pixels (default: the picture's own width).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=16384))]
+    pub(crate) width: Option<u32>,
 }
 
 /// `crmorph frame`: one frame of the morph.
@@ -109,12 +113,91 @@ pub(crate) struct FrameArgs {
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
     pub(crate) method: MethodArg,
-    /// Output size in pixels for .png and .svg, e.g. 512x512 (default: the drawing's own size).
+    #[command(flatten)]
+    pub(crate) look: Look,
+}
+
+/// How rendered output looks: size and background.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct Look {
+    /// Output size in pixels, e.g. 512x512 (default: the drawing's own size). SVG output keeps
+    /// the drawing's coordinates and gets this width and height.
     #[arg(long, value_parser = parse_size)]
     pub(crate) size: Option<(u32, u32)>,
-    /// Background colour under the artwork, any SVG colour (default: transparent).
+    /// Background colour under the artwork, any SVG colour (default: transparent; white for
+    /// GIF, which has no partial transparency).
     #[arg(long, value_parser = parse_colour)]
     pub(crate) background: Option<Rgba>,
+}
+
+/// Timing of an animation.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct Timing {
+    /// Number of frames, the first at t = 0 and the last at t = 1.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    pub(crate) frames: u32,
+    /// Seconds from the source to the target.
+    #[arg(long, default_value_t = 2.0, value_parser = duration)]
+    pub(crate) duration: f64,
+    /// How the morph's progress follows time.
+    #[arg(long, value_enum, default_value_t = EasingArg::Linear)]
+    pub(crate) easing: EasingArg,
+    /// Play forever, restarting from the source.
+    #[arg(long = "loop", conflicts_with = "yoyo")]
+    pub(crate) repeat: bool,
+    /// Play forever, back and forth.
+    #[arg(long)]
+    pub(crate) yoyo: bool,
+}
+
+impl Timing {
+    pub(crate) fn timeline(&self) -> Timeline {
+        Timeline {
+            frames: self.frames as usize,
+            duration: self.duration,
+            easing: match self.easing {
+                EasingArg::Linear => Easing::Linear,
+                EasingArg::EaseInOut => Easing::EaseInOut,
+            },
+            playback: if self.yoyo {
+                Playback::Yoyo
+            } else if self.repeat {
+                Playback::Loop
+            } else {
+                Playback::Once
+            },
+        }
+    }
+}
+
+/// `--easing`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum EasingArg {
+    /// Constant speed.
+    Linear,
+    /// Slow at both ends.
+    EaseInOut,
+}
+
+/// `--frame-format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub(crate) enum FrameFormat {
+    /// Standalone SVG files.
+    #[default]
+    Svg,
+    /// PNG images rendered at `--size`.
+    Png,
+}
+
+fn duration(s: &str) -> std::result::Result<f64, String> {
+    let v: f64 = s
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number of seconds"))?;
+    if v.is_finite() && v >= 0.01 && v <= 3600.0 {
+        Ok(v)
+    } else {
+        Err(format!("'{s}' must be between 0.01 and 3600 seconds"))
+    }
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
@@ -147,12 +230,19 @@ fn parse_colour(s: &str) -> std::result::Result<Rgba, String> {
 pub(crate) struct MorphArgs {
     #[command(flatten)]
     pub(crate) inputs: Inputs,
-    /// Number of frames, the first at t = 0 and the last at t = 1.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=10000))]
-    pub(crate) frames: u32,
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
     pub(crate) method: MethodArg,
+    #[command(flatten)]
+    pub(crate) timing: Timing,
+    #[command(flatten)]
+    pub(crate) look: Look,
+    /// Also write every frame into this folder (created if missing) as frame_000.svg, … .
+    #[arg(long)]
+    pub(crate) frames_dir: Option<PathBuf>,
+    /// Format of the files in --frames-dir.
+    #[arg(long, value_enum, default_value_t = FrameFormat::Svg, requires = "frames_dir")]
+    pub(crate) frame_format: FrameFormat,
 }
 
 /// A usage problem found after parsing (exit status 2).
@@ -230,13 +320,44 @@ fn interpolator(
 
 /// Runs `inspect`.
 pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
-    let fmt = output_format(&a.inputs.output, &[Format::Svg, Format::Json], "inspect")?;
+    let fmt = output_format(
+        &a.inputs.output,
+        &[Format::Svg, Format::Png, Format::Json],
+        "inspect",
+    )?;
     let (_, _, c) = compatible(&a.inputs, progress)?;
     let bytes = match fmt {
-        Format::Json => crmorph::json::meshes_json(&c.meshes),
-        _ => crmorph::inspect::inspect_svg(&c),
+        Format::Json => crmorph::json::meshes_json(&c.meshes).into_bytes(),
+        Format::Png => {
+            progress.stage("rendering");
+            crmorph::render::svg_png(&crmorph::inspect::inspect_svg(&c), a.width)?
+        }
+        _ => crmorph::inspect::inspect_svg(&c).into_bytes(),
     };
-    write_atomic(&a.inputs.output, bytes.as_bytes())
+    write_atomic(&a.inputs.output, &bytes)
+}
+
+/// Reads both drawings' artwork and binds it to the meshes with the interpolator of `method`.
+fn build_morph(
+    inputs: &Inputs,
+    method: MethodArg,
+    look: &Look,
+    progress: &Progress,
+) -> Result<Morph> {
+    let (s, t, c) = compatible(inputs, progress)?;
+    progress.stage("interpolation");
+    let interp = interpolator(inputs, method, &c.meshes)?;
+    progress.stage("binding the artwork");
+    let dir = |d: &Drawing| Path::new(&d.file).parent().map(|p| p.to_path_buf());
+    let guides = "controls";
+    let ss = Scene::from_svg_in(&s.file, &s.svg, guides, dir(&s).as_deref())?;
+    let ts = Scene::from_svg_in(&t.file, &t.svg, guides, dir(&t).as_deref())?;
+    let mut opts = FrameOptions::for_scene(&ss);
+    if let Some((w, h)) = look.size {
+        opts.size = (w, h);
+    }
+    opts.background = look.background;
+    Ok(Morph::new(c.meshes, interp, &ss, &ts, opts)?)
 }
 
 /// Runs `frame`.
@@ -246,34 +367,18 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         &[Format::Json, Format::Svg, Format::Png],
         "frame",
     )?;
-    let (s, t, c) = compatible(&a.inputs, progress)?;
-    progress.stage("interpolation");
-    let m = &c.meshes;
-    let interp = interpolator(&a.inputs, a.method, m)?;
-    let v = interp.at_vec(a.at);
-    let bytes = match fmt {
-        Format::Json => crmorph::json::frame_json(m, a.at, &v).into_bytes(),
-        _ => {
-            progress.stage("rendering");
-            let dir = |d: &Drawing| {
-                std::path::Path::new(&d.file)
-                    .parent()
-                    .map(|p| p.to_path_buf())
-            };
-            let guides = "controls";
-            let ss = Scene::from_svg_in(&s.file, &s.svg, guides, dir(&s).as_deref())?;
-            let ts = Scene::from_svg_in(&t.file, &t.svg, guides, dir(&t).as_deref())?;
-            let mut opts = FrameOptions::for_scene(&ss);
-            if let Some((w, h)) = a.size {
-                opts.size = (w, h);
-            }
-            opts.background = a.background;
-            let pair = ArtworkPair::new(&ss, &ts, m, opts.flatten_tolerance())?;
-            let (sw, tw) = pair.at(&v)?;
-            match fmt {
-                Format::Svg => frame_svg(&sw, &tw, a.at, &opts)?.into_bytes(),
-                _ => frame_png(&sw, &tw, a.at, &opts)?,
-            }
+    let bytes = if fmt == Format::Json {
+        let (_, _, c) = compatible(&a.inputs, progress)?;
+        progress.stage("interpolation");
+        let m = &c.meshes;
+        let v = interpolator(&a.inputs, a.method, m)?.at_vec(a.at);
+        crmorph::json::frame_json(m, a.at, &v).into_bytes()
+    } else {
+        let morph = build_morph(&a.inputs, a.method, &a.look, progress)?;
+        progress.stage("rendering");
+        match fmt {
+            Format::Svg => morph.svg_at(a.at)?.into_bytes(),
+            _ => encode_png(&morph.pixmap_at(a.at)?)?,
         }
     };
     write_atomic(&a.inputs.output, &bytes)
@@ -281,20 +386,86 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
 
 /// Runs `morph`.
 pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
-    output_format(&a.inputs.output, &[Format::Json], "morph")?;
-    let (_, _, c) = compatible(&a.inputs, progress)?;
-    progress.stage("interpolation");
-    let m = &c.meshes;
-    let interp = interpolator(&a.inputs, a.method, m)?;
-    let n = a.frames as usize;
-    let ts: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
-    let frames = interp.frames(&ts);
-    let json = crmorph::json::frames_json(m, &ts, &frames);
-    if json.len() > 1 << 31 {
-        bail!(
-            "{}: the output would be larger than 2 GiB; use fewer frames",
-            a.inputs.output.display()
-        );
+    let fmt = output_format(
+        &a.inputs.output,
+        &[
+            Format::Svg,
+            Format::Gif,
+            Format::Png,
+            Format::Html,
+            Format::Json,
+        ],
+        "morph",
+    )?;
+    let timeline = a.timing.timeline();
+    let mut frame_files = Vec::new();
+    if let Some(dir) = &a.frames_dir {
+        let n = timeline.frames;
+        let digits = ((n - 1) as f64).log10().floor() as usize + 1;
+        let ext = match a.frame_format {
+            FrameFormat::Svg => "svg",
+            FrameFormat::Png => "png",
+        };
+        for i in 0..n {
+            let p = dir.join(format!("frame_{i:0width$}.{ext}", width = digits.max(3)));
+            refuse_overwriting_inputs(&p, &[&a.inputs.source, &a.inputs.target])?;
+            frame_files.push(p);
+        }
     }
-    write_atomic(&a.inputs.output, json.as_bytes())
+    let morph = build_morph(&a.inputs, a.method, &a.look, progress)?;
+    progress.stage("rendering");
+    let bytes = match fmt {
+        Format::Json => {
+            let ts = timeline.morph_times();
+            let frames = morph.vertex_frames(&timeline);
+            let json = crmorph::json::frames_json(morph.meshes(), &ts, &frames);
+            if json.len() > 1 << 31 {
+                bail!(
+                    "{}: the output would be larger than 2 GiB; use fewer frames",
+                    a.inputs.output.display()
+                );
+            }
+            json.into_bytes()
+        }
+        Format::Svg => morph.animated_svg(&timeline)?.into_bytes(),
+        Format::Gif => morph.gif(&timeline)?,
+        Format::Png => morph.apng(&timeline)?,
+        _ => {
+            let title = format!(
+                "{} → {}",
+                file_name(&a.inputs.source),
+                file_name(&a.inputs.target)
+            );
+            morph.html(&timeline, &title)?.into_bytes()
+        }
+    };
+    // Every frame is made before anything is written: a failure leaves no partial output.
+    let frames: Vec<Vec<u8>> = match a.frame_format {
+        _ if frame_files.is_empty() => Vec::new(),
+        FrameFormat::Svg => morph
+            .svg_frames(&timeline)?
+            .into_iter()
+            .map(String::into_bytes)
+            .collect(),
+        FrameFormat::Png => morph
+            .pixmap_frames(&timeline)?
+            .iter()
+            .map(encode_png)
+            .collect::<crmorph::Result<_>>()?,
+    };
+    if let Some(dir) = &a.frames_dir {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
+    }
+    progress.stage("writing");
+    for (p, b) in frame_files.iter().zip(&frames) {
+        write_atomic(p, b)?;
+    }
+    write_atomic(&a.inputs.output, &bytes)
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| p.display().to_string())
 }

@@ -3,10 +3,11 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use crmorph::artwork::{ArtworkPair, Rgba, Scene};
+use crmorph::artwork::{Rgba, Scene};
 use crmorph::compatible::{build, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
-use crmorph::render::{frame_png, frame_svg, FrameOptions};
+use crmorph::export::{Easing, Morph, Playback, Timeline};
+use crmorph::render::{encode_png, FrameOptions};
 use crmorph::rigid::{Interpolator, Method};
 
 use crate::output::write_atomic;
@@ -14,12 +15,18 @@ use crate::progress::Progress;
 
 const SOURCE: &str = include_str!("../../fixtures/gourd/source.svg");
 const TARGET: &str = include_str!("../../fixtures/gourd/target.svg");
-const FRAMES: usize = 60;
-/// Rendered frames written as PNG (t = i / (RENDERED − 1)).
-const RENDERED: usize = 9;
+
+/// The demo's animation: two seconds each way, eased, back and forth forever.
+const TIMELINE: Timeline = Timeline {
+    frames: 60,
+    duration: 2.0,
+    easing: Easing::EaseInOut,
+    playback: Playback::Yoyo,
+};
 
 /// Runs the demo into `dir`, and returns a summary for stdout.
 pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
+    let started = std::time::Instant::now();
     std::fs::create_dir_all(dir)
         .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
     let opts = ReadOptions::default();
@@ -28,71 +35,64 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
     let t = Drawing::from_str("gourd/target.svg", TARGET, &opts)?;
     progress.stage("compatible triangulation");
     let c = build(&s, &t, &MorphOptions::default())?;
+    let inspect = crmorph::inspect::inspect_svg(&c);
+    let (vertices, triangles, curves, steps) = (
+        c.meshes.source.len(),
+        c.meshes.triangles.len(),
+        c.meshes.curves.len(),
+        c.stats.steps,
+    );
     progress.stage("interpolation");
     let m = &c.meshes;
     let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles)?;
-    let ts: Vec<f64> = (0..FRAMES)
-        .map(|i| i as f64 / (FRAMES - 1) as f64)
-        .collect();
-    let frames = interp.frames(&ts);
-    progress.stage("writing");
-    write_atomic(&dir.join("source.svg"), SOURCE.as_bytes())?;
-    write_atomic(&dir.join("target.svg"), TARGET.as_bytes())?;
-    write_atomic(
-        &dir.join("inspect.svg"),
-        crmorph::inspect::inspect_svg(&c).as_bytes(),
-    )?;
-    write_atomic(
-        &dir.join("meshes.json"),
-        crmorph::json::meshes_json(m).as_bytes(),
-    )?;
-    write_atomic(
-        &dir.join("frames.json"),
-        crmorph::json::frames_json(m, &ts, &frames).as_bytes(),
-    )?;
-    progress.stage("rendering frames");
     let ss = Scene::from_svg("gourd/source.svg", SOURCE, "controls")?;
     let ts = Scene::from_svg("gourd/target.svg", TARGET, "controls")?;
-    let mut opts = FrameOptions::for_scene(&ss);
-    opts.background = Some(Rgba {
+    let mut frame = FrameOptions::for_scene(&ss);
+    frame.background = Some(Rgba {
         r: 255,
         g: 255,
         b: 255,
         a: 255,
     });
-    let pair = ArtworkPair::new(&ss, &ts, m, opts.flatten_tolerance())?;
-    let frames_dir = dir.join("frames");
-    std::fs::create_dir_all(&frames_dir)
-        .with_context(|| format!("{}: cannot create the folder", frames_dir.display()))?;
-    for i in 0..RENDERED {
-        let t = i as f64 / (RENDERED - 1) as f64;
-        let (sw, tw) = pair.at(&interp.at_vec(t))?;
-        write_atomic(
-            &frames_dir.join(format!("frame_{i:03}.png")),
-            &frame_png(&sw, &tw, t, &opts)?,
-        )?;
-        if i == RENDERED / 2 {
-            write_atomic(
-                &dir.join("middle.svg"),
-                frame_svg(&sw, &tw, t, &opts)?.as_bytes(),
-            )?;
-        }
-    }
-    let inverted: usize = frames
+    let morph = Morph::new(c.meshes, interp, &ss, &ts, frame)?;
+    let inverted: usize = morph
+        .vertex_frames(&TIMELINE)
         .iter()
-        .map(|f| crmorph::mesh::count_inverted(&m.triangles, f))
+        .map(|f| crmorph::mesh::count_inverted(&morph.meshes().triangles, f))
         .sum();
+    progress.stage("rendering");
+    let svg = morph.animated_svg(&TIMELINE)?;
+    let html = morph.html(&TIMELINE, "crmorph demo: gourd in the air → on the ground")?;
+    let gif = morph.gif(&TIMELINE)?;
+    let middle = encode_png(&morph.pixmap_at(0.5)?)?;
+    let meshes = crmorph::json::meshes_json(morph.meshes());
+    progress.stage("writing");
+    let files: [(&str, &[u8]); 8] = [
+        ("source.svg", SOURCE.as_bytes()),
+        ("target.svg", TARGET.as_bytes()),
+        ("morph.svg", svg.as_bytes()),
+        ("morph.gif", &gif),
+        ("morph.html", html.as_bytes()),
+        ("middle.png", &middle),
+        ("inspect.svg", inspect.as_bytes()),
+        ("meshes.json", meshes.as_bytes()),
+    ];
+    for (name, bytes) in files {
+        write_atomic(&dir.join(name), bytes)?;
+    }
     Ok(format!(
         "crmorph demo: gourd in the air -> on the ground\n\
-         compatible triangulation: {} vertices, {} triangles, {} curves, {} mapping steps\n\
-         {} frames interpolated, {} inverted triangles\n\
-         wrote {}/{{source.svg, target.svg, inspect.svg, meshes.json, frames.json, middle.svg, frames/frame_000..008.png}}",
-        m.source.len(),
-        m.triangles.len(),
-        m.curves.len(),
-        c.stats.steps,
-        FRAMES,
-        inverted,
-        dir.display()
+         compatible triangulation: {vertices} vertices, {triangles} triangles, {curves} curves, \
+         {steps} mapping steps\n\
+         {} frames, {inverted} inverted triangles, made in {:.2} s\n\
+         wrote {}/: morph.svg (animated SVG, {} KiB), morph.gif ({} KiB), morph.html (preview), \
+         middle.png, inspect.svg, meshes.json, source.svg, target.svg\n\
+         open {}/morph.html in a browser to play, scrub and see the triangulation",
+        TIMELINE.frames,
+        started.elapsed().as_secs_f64(),
+        dir.display(),
+        svg.len() / 1024,
+        gif.len() / 1024,
+        dir.display(),
     ))
 }

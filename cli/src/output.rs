@@ -74,6 +74,19 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     tmp.write_all(bytes)
         .and_then(|_| tmp.flush())
         .with_context(|| format!("{}: cannot write", path.display()))?;
+    // Temporary files are private (0600); a finished output gets the usual permissions: those
+    // of the file it replaces, else read-write for the owner and readable by everyone.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = match std::fs::metadata(path) {
+            Ok(m) => m.permissions(),
+            Err(_) => std::fs::Permissions::from_mode(0o644),
+        };
+        tmp.as_file()
+            .set_permissions(mode)
+            .with_context(|| format!("{}: cannot set permissions", path.display()))?;
+    }
     tmp.persist(path).map_err(|e| e.error).with_context(|| {
         format!(
             "{}: cannot move the finished file into place",
@@ -93,6 +106,16 @@ mod tests {
         let p = dir.path().join("a.json");
         write_atomic(&p, b"{}").unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"{}");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(&p).unwrap().permissions().mode();
+            assert_eq!(
+                mode & 0o777,
+                0o644,
+                "outputs are not private temporary files"
+            );
+        }
         assert!(refuse_overwriting_inputs(&p, &[&p]).is_err());
         assert!(refuse_overwriting_inputs(&dir.path().join("b.json"), &[&p]).is_ok());
         assert!(write_atomic(&dir.path().join("missing/x.json"), b"").is_err());

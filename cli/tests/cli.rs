@@ -170,10 +170,192 @@ fn the_demo_runs_with_no_arguments() {
     let dir = tempfile::tempdir().unwrap();
     let o = bin().current_dir(dir.path()).output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
-    for f in ["inspect.svg", "meshes.json", "frames.json"] {
+    for f in [
+        "morph.svg",
+        "morph.gif",
+        "morph.html",
+        "middle.png",
+        "inspect.svg",
+        "meshes.json",
+    ] {
         assert!(
             dir.path().join("crmorph-demo").join(f).exists(),
             "{f} missing"
         );
     }
+}
+
+/// Runs `crmorph morph` on the gourd with `extra` arguments, asserting success.
+fn morph_gourd(out: &Path, extra: &[&str]) {
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let mut args = vec![os("morph"), os(&s), os(&t), os("-o"), os(out), os("-q")];
+    args.extend(extra.iter().map(os));
+    let o = run(&args);
+    assert!(o.status.success(), "{out:?}: {}", stderr(&o));
+}
+
+fn gif_frames(p: &Path) -> (usize, Vec<u16>, bool) {
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::RGBA);
+    let mut d = opts.read_info(std::fs::File::open(p).unwrap()).unwrap();
+    let mut delays = Vec::new();
+    while let Some(f) = d.read_next_frame().unwrap() {
+        delays.push(f.delay);
+    }
+    let looping = d.repeat() == gif::Repeat::Infinite;
+    (delays.len(), delays, looping)
+}
+
+#[test]
+fn morph_writes_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n);
+    let small = ["--frames", "12", "--size", "160x160", "--duration", "1.1"];
+    // Animated SVG: re-parses, byte-identical on a second run.
+    morph_gourd(&p("a.svg"), &small);
+    morph_gourd(&p("b.svg"), &small);
+    let svg = std::fs::read_to_string(p("a.svg")).unwrap();
+    assert_eq!(svg, std::fs::read_to_string(p("b.svg")).unwrap());
+    usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("animated SVG re-parses");
+    assert!(svg.contains("<animate attributeName=\"d\"") && svg.contains("dur=\"1.1s\""));
+    assert!(svg.contains("width=\"160\" height=\"160\""));
+    // GIF: 12 frames played once, delays of 1.1 s / 11 = 10 cs.
+    morph_gourd(&p("m.gif"), &small);
+    let (n, delays, looping) = gif_frames(&p("m.gif"));
+    assert_eq!(n, 12);
+    assert!(!looping);
+    assert!(delays.iter().all(|d| *d == 10), "{delays:?}");
+    // Yoyo: forwards and back without doubling the ends, forever.
+    let mut yoyo = small.to_vec();
+    yoyo.push("--yoyo");
+    morph_gourd(&p("y.gif"), &yoyo);
+    let (n, _, looping) = gif_frames(&p("y.gif"));
+    assert_eq!((n, looping), (22, true));
+    // APNG with its frame count and a loop.
+    let mut looped = small.to_vec();
+    looped.push("--loop");
+    morph_gourd(&p("m.png"), &looped);
+    let d = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(p("m.png")).unwrap(),
+    ));
+    let r = d.read_info().unwrap();
+    let ac = r.info().animation_control.expect("an animated PNG");
+    assert_eq!((ac.num_frames, ac.num_plays), (12, 0));
+    assert_eq!((r.info().width, r.info().height), (160, 160));
+    // HTML preview: standalone, with the animation and the controls.
+    morph_gourd(&p("m.html"), &small);
+    let html = std::fs::read_to_string(p("m.html")).unwrap();
+    for needle in ["<svg", "crmorph-time", "crmorph-play", "crmorph-mesh"] {
+        assert!(html.contains(needle), "{needle}");
+    }
+    // JSON: every frame's mesh, at eased times.
+    let mut eased = small.to_vec();
+    eased.extend(["--easing", "ease-in-out"]);
+    morph_gourd(&p("m.json"), &eased);
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(p("m.json")).unwrap()).unwrap();
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 12);
+    let t1 = frames[1]["t"].as_f64().unwrap();
+    assert!(t1 > 0.0 && t1 < 1.0 / 11.0, "ease-in starts slowly: {t1}");
+}
+
+#[test]
+fn frames_dir_holds_every_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let frames = dir.path().join("frames");
+    let out = dir.path().join("m.svg");
+    morph_gourd(
+        &out,
+        &["--frames", "5", "--frames-dir", frames.to_str().unwrap()],
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&frames)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "frame_000.svg",
+            "frame_001.svg",
+            "frame_002.svg",
+            "frame_003.svg",
+            "frame_004.svg"
+        ]
+    );
+    for n in &names {
+        let text = std::fs::read_to_string(frames.join(n)).unwrap();
+        usvg::Tree::from_str(&text, &usvg::Options::default()).expect("frame re-parses");
+    }
+    let pngs = dir.path().join("pngs");
+    morph_gourd(
+        &dir.path().join("m2.svg"),
+        &[
+            "--frames",
+            "3",
+            "--size",
+            "64x48",
+            "--frames-dir",
+            pngs.to_str().unwrap(),
+            "--frame-format",
+            "png",
+        ],
+    );
+    for i in 0..3 {
+        let f = pngs.join(format!("frame_00{i}.png"));
+        let d = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&f).unwrap()));
+        let r = d.read_info().unwrap();
+        assert_eq!((r.info().width, r.info().height), (64, 48));
+    }
+}
+
+#[test]
+fn inspect_renders_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let out = dir.path().join("tri.png");
+    let o = run(&[
+        os("inspect"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&out),
+        os("--width"),
+        os("300"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let d = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&out).unwrap()));
+    let r = d.read_info().unwrap();
+    assert_eq!(r.info().width, 300);
+    assert!(r.info().height > 50);
+}
+
+#[test]
+fn morph_usage_errors_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let out = dir.path().join("m.svg");
+    for extra in [
+        &["--loop", "--yoyo"][..],
+        &["--duration", "0"],
+        &["--frames", "1"],
+        &["--frame-format", "png"],
+        &["--easing", "bouncy"],
+        &["--size", "0x10"],
+    ] {
+        let mut args = vec![os("morph"), os(&s), os(&t), os("-o"), os(&out)];
+        args.extend(extra.iter().map(os));
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&dir.path().join("m.bmp")),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }

@@ -7,7 +7,7 @@
 
 use crate::artwork::{ArtworkPair, Scene};
 use crate::error::Result;
-use crate::export::Timeline;
+use crate::export::{encode_apng, encode_gif, preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::render::{animated_svg, frame_pixmap, frame_svg, FrameOptions};
@@ -112,6 +112,39 @@ impl Morph {
             .map(|v| self.artwork.warped_at(v))
             .collect::<Result<Vec<_>>>()?;
         animated_svg(&keyframes, &timeline.sanitized(), &self.frame)
+    }
+
+    /// The morph as an animated GIF (frames rendered in parallel; composited over the
+    /// background, white when there is none, since GIF has no partial transparency).
+    pub fn gif(&self, timeline: &Timeline) -> Result<Vec<u8>> {
+        let tl = timeline.sanitized();
+        encode_gif(&self.pixmap_frames(&tl)?, &tl, self.frame.background)
+    }
+
+    /// The morph as an animated PNG (APNG, full alpha; frames rendered in parallel).
+    pub fn apng(&self, timeline: &Timeline) -> Result<Vec<u8>> {
+        let tl = timeline.sanitized();
+        encode_apng(&self.pixmap_frames(&tl)?, &tl)
+    }
+
+    /// A standalone HTML page playing the animated SVG, with play/pause, a time slider and a
+    /// toggle that overlays the triangulation.
+    pub fn html(&self, timeline: &Timeline, title: &str) -> Result<String> {
+        let tl = timeline.sanitized();
+        let svg = self.animated_svg(&tl)?;
+        let frames = self.vertex_frames(&tl);
+        // Overlay coordinates to a tenth of an output pixel.
+        let precision = 0.1 / self.frame.scale();
+        let mesh = PreviewMesh {
+            triangles: &self.meshes.triangles,
+            frames: &frames,
+            precision: if precision.is_finite() && precision > 0.0 {
+                precision
+            } else {
+                0.01
+            },
+        };
+        Ok(preview_html(title, &svg, &tl, &mesh))
     }
 }
 

@@ -1,0 +1,222 @@
+//! What a real browser shows. The animated SVG and the HTML preview are opened in headless
+//! Chromium, paused at t ∈ {0, 0.37, 1}, screenshotted, and compared with crmorph's own PNG of
+//! `crmorph frame --at t` (resvg).
+//!
+//! Tolerance: Chromium (Skia) and resvg (tiny-skia) antialias edges differently, and Chromium
+//! renders the blend filter at device resolution; measured on the gourd the mean difference is
+//! about 0.4 of 255 and 0.2 % of pixels differ by more than 32. The test allows a mean of 2,
+//! 1 % of pixels beyond 32 and 0.2 % beyond 64 — a frame from the wrong time, a missing blend or a
+//! snapping `d` animation exceeds these by far.
+//!
+//! Chromium is found as `$CRMORPH_CHROMIUM`, else `chromium`, `chromium-browser` or
+//! `google-chrome` on the PATH (`.ci/run` installs Debian's `chromium`). Without one the test fails
+//! with instructions; `CRMORPH_SKIP_BROWSER=1` skips it explicitly.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use tiny_skia::Pixmap;
+
+const SIZE: (u32, u32) = (400, 400);
+const DURATION: f64 = 2.0;
+const TIMES: [f64; 3] = [0.0, 0.37, 1.0];
+
+fn chromium() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("CRMORPH_CHROMIUM") {
+        return Some(PathBuf::from(p));
+    }
+    let path = std::env::var_os("PATH")?;
+    for dir in std::env::split_paths(&path) {
+        for name in ["chromium", "chromium-browser", "google-chrome"] {
+            let p = dir.join(name);
+            if p.is_file() {
+                return Some(p);
+            }
+        }
+    }
+    None
+}
+
+/// Chromium, or `None` when the browser tests are explicitly skipped.
+fn browser() -> Option<PathBuf> {
+    if std::env::var_os("CRMORPH_SKIP_BROWSER").is_some() {
+        eprintln!("CRMORPH_SKIP_BROWSER is set: browser tests skipped");
+        return None;
+    }
+    Some(chromium().expect(
+        "headless Chromium is needed for the browser tests: `apt-get install chromium`, or set \
+         CRMORPH_CHROMIUM=/path/to/chrome (CRMORPH_SKIP_BROWSER=1 skips them)",
+    ))
+}
+
+/// Screenshots `page` at the window size `size` into a pixmap.
+fn screenshot(chrome: &Path, page: &Path, size: (u32, u32), work: &Path) -> Pixmap {
+    let shot = work.join(format!(
+        "{}.png",
+        page.file_stem().unwrap().to_string_lossy()
+    ));
+    let profile = tempfile::tempdir().unwrap();
+    let out = Command::new(chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--no-first-run",
+            "--hide-scrollbars",
+            "--force-device-scale-factor=1",
+        ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("--window-size={},{}", size.0, size.1))
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .expect("Chromium runs");
+    assert!(
+        shot.exists(),
+        "Chromium wrote no screenshot: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Pixmap::load_png(&shot).unwrap()
+}
+
+/// (mean difference, share of pixels off by more than 32, by more than 64), on RGB.
+fn difference(a: &Pixmap, b: &Pixmap) -> (f64, f64, f64) {
+    assert_eq!((a.width(), a.height()), (b.width(), b.height()));
+    let (mut sum, mut over32, mut over64) = (0.0, 0usize, 0usize);
+    let n = a.pixels().len();
+    for (p, q) in a.pixels().iter().zip(b.pixels()) {
+        let (p, q) = (p.demultiply(), q.demultiply());
+        let d = [
+            p.red().abs_diff(q.red()),
+            p.green().abs_diff(q.green()),
+            p.blue().abs_diff(q.blue()),
+        ]
+        .into_iter()
+        .max()
+        .unwrap();
+        sum += d as f64;
+        over32 += (d > 32) as usize;
+        over64 += (d > 64) as usize;
+    }
+    (
+        sum / n as f64,
+        over32 as f64 / n as f64,
+        over64 as f64 / n as f64,
+    )
+}
+
+fn matches(shot: &Pixmap, reference: &Pixmap) -> bool {
+    let (mean, over32, over64) = difference(shot, reference);
+    mean <= 2.0 && over32 <= 0.01 && over64 <= 0.002
+}
+
+fn assert_matches(what: &str, shot: &Pixmap, reference: &Pixmap) {
+    let (mean, over32, over64) = difference(shot, reference);
+    eprintln!("{what}: mean {mean:.3}, >32 {over32:.5}, >64 {over64:.5}");
+    assert!(
+        matches(shot, reference),
+        "{what}: the browser differs from crmorph's frame: mean {mean:.3}, >32 {over32:.5}, >64 {over64:.5}"
+    );
+}
+
+fn crmorph(args: &[&std::ffi::OsStr]) {
+    let o = Command::new(env!("CARGO_BIN_EXE_crmorph"))
+        .args(args)
+        .arg("--quiet")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+struct Fixture {
+    work: tempfile::TempDir,
+    frames: Vec<Pixmap>,
+}
+
+/// The gourd morph as an animated SVG and as an HTML preview, and crmorph's PNG frames at
+/// [`TIMES`], all 400×400 on white.
+fn gourd(outputs: &[&str]) -> Fixture {
+    let work = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/gourd");
+    let (s, t) = (root.join("source.svg"), root.join("target.svg"));
+    let size = format!("{}x{}", SIZE.0, SIZE.1);
+    let duration = DURATION.to_string();
+    let common = ["--size", &size, "--background", "white"];
+    for out in outputs {
+        let o = work.path().join(out);
+        let mut args: Vec<&std::ffi::OsStr> = vec!["morph".as_ref(), s.as_ref(), t.as_ref()];
+        args.extend(["-o".as_ref(), o.as_os_str(), "--duration".as_ref()]);
+        args.push(duration.as_ref());
+        args.extend(common.iter().map(std::ffi::OsStr::new));
+        crmorph(&args);
+    }
+    let mut frames = Vec::new();
+    for at in TIMES {
+        let png = work.path().join(format!("frame-{at}.png"));
+        let at = at.to_string();
+        let mut args: Vec<&std::ffi::OsStr> = vec!["frame".as_ref(), s.as_ref(), t.as_ref()];
+        args.extend(["--at".as_ref(), at.as_ref(), "-o".as_ref(), png.as_os_str()]);
+        args.extend(common.iter().map(std::ffi::OsStr::new));
+        crmorph(&args);
+        frames.push(Pixmap::load_png(&png).unwrap());
+    }
+    Fixture { work, frames }
+}
+
+#[test]
+fn animated_svg_paused_in_chromium_shows_crmorphs_frames() {
+    let Some(chrome) = browser() else { return };
+    let f = gourd(&["morph.svg"]);
+    let svg = std::fs::read_to_string(f.work.path().join("morph.svg")).unwrap();
+    for (at, reference) in TIMES.iter().zip(&f.frames) {
+        // The SVG inline in a bare page, its timeline paused at t · duration.
+        let page = f.work.path().join(format!("svg-{at}.html"));
+        let html = format!(
+            "<!doctype html><html><head><style>html,body{{margin:0;padding:0;\
+             background:#fff;overflow:hidden}}svg{{display:block}}</style></head><body>{svg}\
+             <script>const s=document.querySelector('svg');s.pauseAnimations();\
+             s.setCurrentTime({});</script></body></html>",
+            at * DURATION
+        );
+        std::fs::write(&page, html).unwrap();
+        let shot = screenshot(&chrome, &page, SIZE, f.work.path());
+        assert_matches(&format!("animated SVG at t = {at}"), &shot, reference);
+        // The comparison tells frames apart: the middle is neither end.
+        if *at == 0.37 {
+            assert!(!matches(&shot, &f.frames[0]) && !matches(&shot, &f.frames[2]));
+        }
+    }
+}
+
+#[test]
+fn html_preview_slider_scrubs_to_crmorphs_frames() {
+    let Some(chrome) = browser() else { return };
+    let f = gourd(&["preview.html"]);
+    let page = std::fs::read_to_string(f.work.path().join("preview.html")).unwrap();
+    assert!(!page.contains("http://") || page.matches("http://").count() <= 2);
+    for (at, reference) in TIMES.iter().zip(&f.frames) {
+        // Drive the page as a user would — set the slider and fire its input event — then pin
+        // the drawing to the window's corner at its own size and hide the chrome around it.
+        let harness = format!(
+            "<style>html,body{{margin:0;padding:0;background:#fff;overflow:hidden}}\
+             h1,.crmorph-controls{{visibility:hidden}}\
+             #crmorph-stage{{position:fixed;left:0;top:0;margin:0;padding:0;border:0;\
+             border-radius:0}}\
+             #crmorph-stage>svg{{width:{w}px;height:{h}px;max-width:none;max-height:none}}\
+             </style><script>const s=document.getElementById('crmorph-time');\
+             s.value='{at}';s.dispatchEvent(new Event('input'));</script></body>",
+            w = SIZE.0,
+            h = SIZE.1
+        );
+        let driven = page.replacen("</body>", &harness, 1);
+        assert_ne!(driven, page, "the preview has a </body>");
+        let path = f.work.path().join(format!("preview-{at}.html"));
+        std::fs::write(&path, driven).unwrap();
+        let shot = screenshot(&chrome, &path, SIZE, f.work.path());
+        assert_matches(&format!("HTML preview at t = {at}"), &shot, reference);
+        if *at == 0.37 {
+            assert!(!matches(&shot, &f.frames[0]) && !matches(&shot, &f.frames[2]));
+        }
+    }
+}
