@@ -193,7 +193,7 @@ fn duration(s: &str) -> std::result::Result<f64, String> {
     let v: f64 = s
         .parse()
         .map_err(|_| format!("'{s}' is not a number of seconds"))?;
-    if v.is_finite() && v >= 0.01 && v <= 3600.0 {
+    if (0.01..=3600.0).contains(&v) {
         Ok(v)
     } else {
         Err(format!("'{s}' must be between 0.01 and 3600 seconds"))
@@ -237,7 +237,7 @@ pub(crate) struct MorphArgs {
     pub(crate) timing: Timing,
     #[command(flatten)]
     pub(crate) look: Look,
-    /// Also write every frame into this folder (created if missing) as frame_000.svg, … .
+    /// Also write every frame into this folder (created if missing) as `frame_000.svg`, … .
     #[arg(long)]
     pub(crate) frames_dir: Option<PathBuf>,
     /// Format of the files in --frames-dir.

@@ -488,7 +488,7 @@ mod tests {
             })
             .collect();
         assert_eq!(rows.len(), MAX_SAMPLES);
-        let mut acc = vec![0.0; 8];
+        let mut acc = [0.0; 8];
         for (row, &tau) in rows.iter().zip(&times) {
             let i = (tau * 99.0).round() as usize;
             for (k, v) in row.iter().enumerate() {
