@@ -11,7 +11,7 @@
 //! - **One global palette.** Built once from pixels of all frames (exactly, when the animation
 //!   has at most 256 colours; with `NeuQuant` otherwise), so a colour maps to the same index in
 //!   every frame and flat areas do not shimmer as per-frame palettes would.
-//! - **Timing.** See [`playback_schedule`]: delays of at least 2 cs (browsers replace shorter
+//! - **Timing.** See `playback_schedule`: delays of at least 2 cs (browsers replace shorter
 //!   ones by 100 ms), cumulative rounding so that the period stays right, and skipped frames
 //!   rather than a slower morph when the frame interval is under 20 ms.
 //! - **Small files.** After the first frame only the rectangle that changed is stored (frames
@@ -130,7 +130,7 @@ pub(crate) fn check_frames(frames: &[Pixmap], timeline: &Timeline) -> Result<(u3
 ///
 /// Frame `k` of the sequence starts at `round(k · interval · 100)` cs, so the delays (at least
 /// 2 cs each) add up to the period; when the interval is under 20 ms, frames are skipped rather
-/// than the animation slowed down (see [`playback_schedule`]). Output is deterministic.
+/// than the animation slowed down (see `playback_schedule`). Output is deterministic.
 ///
 /// Errors (internal): no frames, a frame count other than the timeline's, frames of different
 /// sizes, or frames larger than GIF's 65 535 px.

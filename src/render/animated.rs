@@ -1,11 +1,11 @@
 //! The morph as one animated SVG file (SMIL), playable in Chromium, Firefox and Safari.
 //!
 //! Every keyframe is built as the same blended frame tree ([`super::svg_frame`] in
-//! [`Mode::Keyframe`]); the trees are lined up element by element and every attribute that
+//! `Mode::Keyframe`); the trees are lined up element by element and every attribute that
 //! differs between keyframes becomes an animation of that element:
 //! - path data: one `<animate attributeName="d">` whose keyframes share one segment structure
 //!   (browsers snap instead of interpolating otherwise), polylines fitted with cubics that hold a
-//!   quarter pixel in *every* keyframe ([`super::fit`]);
+//!   quarter pixel in *every* keyframe (`render::fit`);
 //! - numbers (stroke widths, dashes, the blend weights `k2`/`k3` of the filter that makes the frame
 //!   `(1 − t)·S_t + t·T_t`): `<animate>` with the numbers;
 //! - transforms (images, gradients, shaped pens): decomposed as

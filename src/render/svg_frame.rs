@@ -23,11 +23,11 @@
 //!
 //! Output is deterministic: elements in paint order, generated ids numbered in that order,
 //! coordinates rounded to 1/100 px at the output size. Warped (flattened) outlines are fitted
-//! with cubic curves within a tenth of a pixel ([`super::fit`]); the exact input at t = 0 and
+//! with cubic curves within a tenth of a pixel (`render::fit`); the exact input at t = 0 and
 //! t = 1 is written as it is.
 //!
-//! Frames are built as element trees ([`super::tree`]); the animated SVG
-//! ([`super::animated`]) builds one per keyframe in [`Mode::Keyframe`] and animates what differs.
+//! Frames are built as element trees (`render::tree`); the animated SVG
+//! ([`super::animated`]) builds one per keyframe in `Mode::Keyframe` and animates what differs.
 
 use super::tree::{fixed, matrix, Builder, Node, NumFormat, Value};
 use super::FrameOptions;
@@ -90,7 +90,7 @@ pub(crate) fn scene_tree(scene: &Scene, opts: &FrameOptions) -> Node {
     doc.finish(opts, defs, body)
 }
 
-/// The frame at `t` as a tree (see [`frame_svg`]; [`Mode::Keyframe`] blends at every t).
+/// The frame at `t` as a tree (see [`frame_svg`]; `Mode::Keyframe` blends at every t).
 pub(crate) fn frame_tree(
     source: &Scene,
     target: &Scene,
