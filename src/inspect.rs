@@ -67,7 +67,20 @@ fn el<'a>(name: &'a str, attrs: &[(&'a str, &'a str)]) -> BytesStart<'a> {
     e
 }
 
-fn panel(w: &mut Writer<Vec<u8>>, c: &Compatible, points: &[Point], index: usize, title: &str) {
+/// A skeleton to draw over a panel: bones and joint positions.
+type SkeletonView<'a> = Option<(&'a [[u32; 2]], &'a [Point])>;
+
+/// A skeleton to draw over both panels: bones, source joints, target joints.
+pub type SkeletonPair<'a> = Option<(&'a [[u32; 2]], &'a [Point], &'a [Point])>;
+
+fn panel(
+    w: &mut Writer<Vec<u8>>,
+    c: &Compatible,
+    points: &[Point],
+    index: usize,
+    title: &str,
+    skeleton: SkeletonView<'_>,
+) {
     let m = &c.meshes;
     let p = Panel::new(points, index);
     // Mesh edges as one path.
@@ -149,6 +162,41 @@ fn panel(w: &mut Writer<Vec<u8>>, c: &Compatible, points: &[Point], index: usize
             }
         }
     }
+    if let Some((bones, joints)) = skeleton {
+        let mut d = String::new();
+        for &[a, b] in bones {
+            d.push('M');
+            fmt_xy(&mut d, p.map(joints[a as usize]));
+            d.push('L');
+            fmt_xy(&mut d, p.map(joints[b as usize]));
+        }
+        let _ = w.write_event(Event::Empty(el(
+            "path",
+            &[
+                ("d", &d),
+                ("fill", "none"),
+                ("stroke", "#00acc1"),
+                ("stroke-width", "3"),
+                ("stroke-linecap", "round"),
+                ("data-skeleton", "bones"),
+            ],
+        )));
+        for &j in joints {
+            let q = p.map(j);
+            let (cx, cy) = (format!("{:.2}", q.x), format!("{:.2}", q.y));
+            let _ = w.write_event(Event::Empty(el(
+                "circle",
+                &[
+                    ("cx", &cx),
+                    ("cy", &cy),
+                    ("r", "4"),
+                    ("fill", "#ffffff"),
+                    ("stroke", "#00838f"),
+                    ("stroke-width", "1.5"),
+                ],
+            )));
+        }
+    }
     let (x, y) = (
         format!("{:.0}", index as f64 * PANEL + PANEL / 2.0),
         format!("{:.0}", PANEL + CAPTION / 2.0),
@@ -170,6 +218,15 @@ fn panel(w: &mut Writer<Vec<u8>>, c: &Compatible, points: &[Point], index: usize
 
 /// The side-by-side SVG picture of the compatible triangulations.
 pub fn inspect_svg(c: &Compatible) -> String {
+    inspect_svg_with_skeleton(c, None)
+}
+
+/// [`inspect_svg`] with a skeleton drawn over both panels: `bones`, the joints on the source
+/// (the reference skeleton) and on the target (the derived skeleton at t = 1), §4.2.
+pub fn inspect_svg_with_skeleton(
+    c: &Compatible,
+    skeleton: SkeletonPair<'_>,
+) -> String {
     let m = &c.meshes;
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 1);
     let (wd, ht) = (format!("{}", 2.0 * PANEL), format!("{}", PANEL + CAPTION));
@@ -193,13 +250,21 @@ pub fn inspect_svg(c: &Compatible) -> String {
         m.triangles.len(),
         m.curves.len()
     );
-    panel(&mut w, c, &m.source, 0, &format!("source — {stats}"));
+    panel(
+        &mut w,
+        c,
+        &m.source,
+        0,
+        &format!("source — {stats}"),
+        skeleton.map(|(b, s, _)| (b, s)),
+    );
     panel(
         &mut w,
         c,
         &m.target,
         1,
         &format!("target — {} mapping steps", c.stats.steps),
+        skeleton.map(|(b, _, t)| (b, t)),
     );
     let _ = w.write_event(Event::End(BytesEnd::new("svg")));
     let mut s = String::from_utf8(w.into_inner()).expect("writer produces UTF-8");

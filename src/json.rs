@@ -45,6 +45,14 @@ struct Frame<'a> {
     t: f64,
     vertices: Vec<[f64; 2]>,
     curves: Vec<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    skeleton: Option<SkeletonDoc<'a>>,
+}
+
+#[derive(Serialize)]
+struct SkeletonDoc<'a> {
+    joints: Vec<[f64; 2]>,
+    bones: &'a [[u32; 2]],
 }
 
 /// The compatible meshes as JSON: shared `triangles`, `source` and `target` vertices in the
@@ -61,11 +69,26 @@ pub fn meshes_json(m: &CompatibleMeshes) -> String {
 
 /// One frame as JSON: the mesh at `t` (`vertices`), with the shared `triangles` and `curves`.
 pub fn frame_json(m: &CompatibleMeshes, t: f64, vertices: &[Point]) -> String {
+    frame_json_with_skeleton(m, t, vertices, None)
+}
+
+/// [`frame_json`] with the frame's `skeleton`: its `bones` and the `joints` where the frame's
+/// mesh carries the reference joints (§4.2; DESIGN.md §3).
+pub fn frame_json_with_skeleton(
+    m: &CompatibleMeshes,
+    t: f64,
+    vertices: &[Point],
+    skeleton: Option<(&[[u32; 2]], &[Point])>,
+) -> String {
     let doc = Frame {
         triangles: &m.triangles,
         t,
         vertices: xy(vertices),
         curves: curves(m),
+        skeleton: skeleton.map(|(bones, joints)| SkeletonDoc {
+            joints: xy(joints),
+            bones,
+        }),
     };
     serde_json::to_string(&doc).expect("plain data serializes")
 }

@@ -42,6 +42,7 @@ pub mod mesh;
 pub mod quality;
 pub mod render;
 pub mod rigid;
+pub mod skeleton;
 pub mod tolerance;
 pub mod triangulation;
 

@@ -8,9 +8,10 @@ use clap::{Args, ValueEnum};
 use crmorph::artwork::{Rgba, Scene};
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
-use crmorph::export::{Easing, Morph, Playback, Timeline};
+use crmorph::export::{Easing, Morph, Motion, Playback, Timeline};
 use crmorph::render::{encode_png, FrameOptions};
 use crmorph::rigid::{Interpolator, Method};
+use crmorph::skeleton::{pose_svg, Pose, Skeleton, SkeletonControl};
 
 use crate::output::{refuse_overwriting_inputs, write_atomic, Format};
 use crate::progress::Progress;
@@ -115,6 +116,51 @@ pub(crate) struct FrameArgs {
     pub(crate) method: MethodArg,
     #[command(flatten)]
     pub(crate) look: Look,
+    #[command(flatten)]
+    pub(crate) steering: Steering,
+}
+
+/// `crmorph skeleton`: the derived skeleton at T drawn over that frame, to edit into a pose.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct SkeletonArgs {
+    #[command(flatten)]
+    pub(crate) inputs: Inputs,
+    /// Time of the frame, strictly between 0 (source) and 1 (target).
+    #[arg(long, value_parser = unit_f64)]
+    pub(crate) at: f64,
+    #[command(flatten)]
+    pub(crate) look: Look,
+    /// Poses already made: the frame and skeleton then show their effect.
+    #[command(flatten)]
+    pub(crate) steering: Steering,
+}
+
+/// Skeleton control (§4.2).
+#[derive(Debug, Clone, Args, Default)]
+pub(crate) struct Steering {
+    /// A control pose: T=POSE.svg, a pose file (from `crmorph skeleton`, edited) for the frame at
+    /// time T. Repeatable. Needs a skeleton in the source drawing and the disc method.
+    #[arg(long = "pose", value_name = "T=POSE.svg", value_parser = parse_pose)]
+    pub(crate) poses: Vec<(f64, PathBuf)>,
+}
+
+fn parse_pose(s: &str) -> std::result::Result<(f64, PathBuf), String> {
+    let (t, file) = s
+        .split_once('=')
+        .ok_or_else(|| format!("'{s}' is not T=POSE.svg, e.g. 0.5=pose.svg"))?;
+    let t: f64 = t
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{t}' in '{s}' is not a time"))?;
+    if !(t > 0.0 && t < 1.0) {
+        return Err(format!(
+            "'{s}': a pose's time must be strictly between 0 (the source) and 1 (the target)"
+        ));
+    }
+    if file.is_empty() {
+        return Err(format!("'{s}' names no pose file"));
+    }
+    Ok((t, PathBuf::from(file)))
 }
 
 /// How rendered output looks: size and background.
@@ -237,6 +283,8 @@ pub(crate) struct MorphArgs {
     pub(crate) timing: Timing,
     #[command(flatten)]
     pub(crate) look: Look,
+    #[command(flatten)]
+    pub(crate) steering: Steering,
     /// Also write every frame into this folder (created if missing) as `frame_000.svg`, … .
     #[arg(long)]
     pub(crate) frames_dir: Option<PathBuf>,
@@ -277,7 +325,7 @@ fn output_format(out: &Path, allowed: &[Format], command: &str) -> Result<Format
     }
 }
 
-fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
+fn read_options(inputs: &Inputs) -> ReadOptions {
     let mut ids = ControlIds::default();
     ids.boundary = inputs.boundary_id.clone();
     ids.feature_prefix = inputs.feature_prefix.clone();
@@ -285,6 +333,11 @@ fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
     let mut opts = ReadOptions::default();
     opts.ids = ids;
     opts.density = inputs.density;
+    opts
+}
+
+fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
+    let opts = read_options(inputs);
     let s = Drawing::open(&inputs.source, &opts)?;
     let t = Drawing::open(&inputs.target, &opts)?;
     Ok((s, t))
@@ -325,28 +378,92 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         &[Format::Svg, Format::Png, Format::Json],
         "inspect",
     )?;
-    let (_, _, c) = compatible(&a.inputs, progress)?;
+    let (s, _, c) = compatible(&a.inputs, progress)?;
+    // The reference skeleton, if the source has one, and where the target mesh carries it.
+    let skeleton = if s.controls.skeleton.is_empty() {
+        None
+    } else {
+        let sk = Skeleton::from_chains(&s.file, &s.controls.skeleton, c.tolerances.snap)?;
+        let control = SkeletonControl::new(&c.meshes, sk.clone(), &[])
+            .map_err(|e| e.in_file(a.inputs.source.display().to_string()))?;
+        let target = control.derived(&c.meshes.target);
+        let source = control.derived(&c.meshes.source);
+        Some((sk.bones, source, target))
+    };
+    let picture = || {
+        crmorph::inspect::inspect_svg_with_skeleton(
+            &c,
+            skeleton
+                .as_ref()
+                .map(|(b, s, t)| (b.as_slice(), s.as_slice(), t.as_slice())),
+        )
+    };
     let bytes = match fmt {
         Format::Json => crmorph::json::meshes_json(&c.meshes).into_bytes(),
         Format::Png => {
             progress.stage("rendering");
-            crmorph::render::svg_png(&crmorph::inspect::inspect_svg(&c), a.width)?
+            crmorph::render::svg_png(&picture(), a.width)?
         }
-        _ => crmorph::inspect::inspect_svg(&c).into_bytes(),
+        _ => picture().into_bytes(),
     };
     write_atomic(&a.inputs.output, &bytes)
 }
 
-/// Reads both drawings' artwork and binds it to the meshes with the interpolator of `method`.
+/// The motion of the mesh: the interpolator of `method`, or skeleton control when poses are
+/// given (or `always_skeleton`, for `crmorph skeleton`).
+fn motion(
+    inputs: &Inputs,
+    method: MethodArg,
+    steering: &Steering,
+    always_skeleton: bool,
+    source: &Drawing,
+    c: &Compatible,
+) -> Result<Motion> {
+    if steering.poses.is_empty() && !always_skeleton {
+        return Ok(interpolator(inputs, method, &c.meshes)?.into());
+    }
+    if method != MethodArg::Disc {
+        return Err(Usage("--pose steers the disc method only; leave out --method".into()).into());
+    }
+    if source.controls.skeleton.is_empty() {
+        bail!(
+            "{}: has no skeleton (polylines with id '{}' or '{}-NAME'); skeleton control needs one \
+             on the source drawing",
+            inputs.source.display(),
+            inputs.skeleton_id,
+            inputs.skeleton_id
+        );
+    }
+    let skeleton =
+        Skeleton::from_chains(&source.file, &source.controls.skeleton, c.tolerances.snap)?;
+    let mut poses = Vec::with_capacity(steering.poses.len());
+    for (t, file) in &steering.poses {
+        refuse_overwriting_inputs(&inputs.output, &[file])?;
+        let pose = Drawing::open(file, &read_options(inputs))?;
+        let joints = skeleton.pose_from_chains(&pose.file, &pose.controls.skeleton)?;
+        if poses.iter().any(|p: &Pose| (p.t - t).abs() < 1e-9) {
+            return Err(Usage(format!("two poses at t = {t}")).into());
+        }
+        poses.push(Pose { t: *t, joints });
+    }
+    Ok(SkeletonControl::new(&c.meshes, skeleton, &poses)
+        .map_err(|e| e.in_file(inputs.source.display().to_string()))?
+        .into())
+}
+
+/// Reads both drawings' artwork and binds it to the meshes with the motion of `method` and
+/// `steering`.
 fn build_morph(
     inputs: &Inputs,
     method: MethodArg,
     look: &Look,
+    steering: &Steering,
+    always_skeleton: bool,
     progress: &Progress,
 ) -> Result<Morph> {
     let (s, t, c) = compatible(inputs, progress)?;
     progress.stage("interpolation");
-    let interp = interpolator(inputs, method, &c.meshes)?;
+    let motion = motion(inputs, method, steering, always_skeleton, &s, &c)?;
     progress.stage("binding the artwork");
     let dir = |d: &Drawing| Path::new(&d.file).parent().map(|p| p.to_path_buf());
     let guides = "controls";
@@ -357,7 +474,7 @@ fn build_morph(
         opts.size = (w, h);
     }
     opts.background = look.background;
-    Ok(Morph::new(c.meshes, interp, &ss, &ts, opts)?)
+    Ok(Morph::new(c.meshes, motion, &ss, &ts, opts)?)
 }
 
 /// Runs `frame`.
@@ -368,13 +485,28 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         "frame",
     )?;
     let bytes = if fmt == Format::Json {
-        let (_, _, c) = compatible(&a.inputs, progress)?;
+        let (s, _, c) = compatible(&a.inputs, progress)?;
         progress.stage("interpolation");
-        let m = &c.meshes;
-        let v = interpolator(&a.inputs, a.method, m)?.at_vec(a.at);
-        crmorph::json::frame_json(m, a.at, &v).into_bytes()
+        // With a skeleton in the source, the frame carries it (always through skeleton
+        // control, which without poses is the plain disc interpolation).
+        let has_skeleton = !s.controls.skeleton.is_empty() && a.method == MethodArg::Disc;
+        let mv = motion(&a.inputs, a.method, &a.steering, has_skeleton, &s, &c)?;
+        let v = mv.at_vec(a.at);
+        let skeleton = match &mv {
+            Motion::Skeleton(control) => {
+                Some((control.skeleton().bones.clone(), control.derived(&v)))
+            }
+            Motion::Plain(_) => None,
+        };
+        crmorph::json::frame_json_with_skeleton(
+            &c.meshes,
+            a.at,
+            &v,
+            skeleton.as_ref().map(|(b, j)| (b.as_slice(), j.as_slice())),
+        )
+        .into_bytes()
     } else {
-        let morph = build_morph(&a.inputs, a.method, &a.look, progress)?;
+        let morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
         progress.stage("rendering");
         match fmt {
             Format::Svg => morph.svg_at(a.at)?.into_bytes(),
@@ -412,7 +544,7 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
             frame_files.push(p);
         }
     }
-    let morph = build_morph(&a.inputs, a.method, &a.look, progress)?;
+    let morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
     progress.stage("rendering");
     let bytes = match fmt {
         Format::Json => {
@@ -468,4 +600,35 @@ fn file_name(p: &Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| p.display().to_string())
+}
+
+/// Runs `skeleton`: the frame at T with its derived skeleton drawn on it.
+pub(crate) fn skeleton(a: &SkeletonArgs, progress: &Progress) -> Result<()> {
+    output_format(&a.inputs.output, &[Format::Svg], "skeleton")?;
+    if !(a.at > 0.0 && a.at < 1.0) {
+        return Err(Usage(format!(
+            "--at {}: a pose is edited on an in-between frame, strictly between 0 and 1",
+            a.at
+        ))
+        .into());
+    }
+    let morph = build_morph(
+        &a.inputs,
+        MethodArg::Disc,
+        &a.look,
+        &a.steering,
+        true,
+        progress,
+    )?;
+    let Motion::Skeleton(control) = morph.motion() else {
+        bail!("internal error: skeleton control was not set up");
+    };
+    progress.stage("rendering");
+    let mesh = morph.vertices_at(a.at);
+    let joints = control.derived(&mesh);
+    let frame = morph.svg_at(a.at)?;
+    let (lo, hi) = morph.frame_options().view_box;
+    let width = 0.006 * (hi - lo).length();
+    let text = pose_svg(&frame, control.skeleton(), &joints, a.at, width);
+    write_atomic(&a.inputs.output, text.as_bytes())
 }

@@ -12,7 +12,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use commands::{FrameArgs, InspectArgs, MorphArgs, Usage};
+use commands::{FrameArgs, InspectArgs, MorphArgs, SkeletonArgs, Usage};
 use progress::Progress;
 
 /// crmorph morphs one SVG drawing into another the way an animator would: rigidly, with interior
@@ -30,12 +30,15 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Morph SRC into TGT; the output's extension picks the format (.json: every frame's mesh).
+    /// Morph SRC into TGT; the output's extension picks the format: .svg (animated), .gif, .png
+    /// (APNG), .html (preview), .json (every frame's mesh).
     Morph(MorphArgs),
     /// One frame at time T: .png or .svg (the rendered frame) or .json (the mesh at T).
     Frame(FrameArgs),
-    /// The compatible triangulations side by side (.svg) or the meshes (.json).
+    /// The compatible triangulations side by side (.svg/.png) or the meshes (.json).
     Inspect(InspectArgs),
+    /// The derived skeleton at time T drawn over that frame (.svg), to edit into a --pose file.
+    Skeleton(SkeletonArgs),
 }
 
 fn run(cli: &Cli) -> anyhow::Result<()> {
@@ -45,6 +48,7 @@ fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Morph(a)) => commands::morph(a, &progress),
         Some(Command::Frame(a)) => commands::frame(a, &progress),
         Some(Command::Inspect(a)) => commands::inspect(a, &progress),
+        Some(Command::Skeleton(a)) => commands::skeleton(a, &progress),
     };
     progress.finish();
     r

@@ -80,6 +80,7 @@ fn frame_writes_the_mesh_at_t_for_each_method() {
         let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
         assert_eq!(v["t"], 0.5);
         assert!(v["vertices"].as_array().unwrap().len() > 10);
+        assert!(v.get("skeleton").is_none(), "the gourd has no skeleton");
     }
 }
 
@@ -358,4 +359,144 @@ fn morph_usage_errors_exit_2() {
         os(&dir.path().join("m.bmp")),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn skeleton_writes_an_editable_pose_that_steers_the_morph() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("dancer/source.svg"), fixture("dancer/target.svg"));
+    let pose = dir.path().join("pose.svg");
+    let o = run(&[
+        os("skeleton"),
+        os(&s),
+        os(&t),
+        os("--at"),
+        os("0.4"),
+        os("-o"),
+        os(&pose),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&pose).unwrap();
+    usvg::Tree::from_str(&text, &usvg::Options::default()).expect("the pose file is valid SVG");
+    for id in ["skeleton-body", "skeleton-arms", "skeleton-legs"] {
+        assert!(text.contains(&format!("id=\"{id}\"")), "{id}");
+    }
+    // Unedited, the pose is the derived skeleton: the frame barely changes.
+    let json = |extra: &[&str], name: &str| -> Vec<(f64, f64)> {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            os("frame"),
+            os(&s),
+            os(&t),
+            os("--at"),
+            os("0.4"),
+            os("-o"),
+            os(&out),
+        ];
+        args.extend(extra.iter().map(os));
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        v["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+            .collect()
+    };
+    let plain = json(&[], "plain.json");
+    // The frame's JSON carries the skeleton (DESIGN.md §3).
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("plain.json")).unwrap()).unwrap();
+    assert_eq!(v["skeleton"]["joints"].as_array().unwrap().len(), 18);
+    assert_eq!(v["skeleton"]["bones"].as_array().unwrap().len(), 17);
+    let pose_arg = format!("0.4={}", pose.display());
+    let same = json(&["--pose", &pose_arg], "same.json");
+    let worst = plain
+        .iter()
+        .zip(&same)
+        .map(|(a, b)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    assert!(worst < 1.0, "an unedited pose moved a vertex by {worst}");
+    // The bundled edited pose makes a different frame.
+    let edited = format!("0.5={}", fixture("dancer/pose-0.5.svg").display());
+    let kicked = json(&["--pose", &edited], "kicked.json");
+    let moved = plain
+        .iter()
+        .zip(&kicked)
+        .map(|(a, b)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 10.0,
+        "the edited pose moved vertices by only {moved}"
+    );
+}
+
+#[test]
+fn pose_errors_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("dancer/source.svg"), fixture("dancer/target.svg"));
+    let out = dir.path().join("m.svg");
+    // A pose made for the lower-body skeleton does not fit the full one.
+    let lower = format!("0.5={}", fixture("dancer/pose-lower-0.5.svg").display());
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&out),
+        os("--pose"),
+        os(&lower),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("pose-lower-0.5.svg") && e.contains("skeleton"),
+        "{e}"
+    );
+    assert_eq!(e.lines().count(), 1);
+    assert!(!out.exists());
+    // A drawing without a skeleton cannot take poses.
+    let (g, h) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let o = run(&[
+        os("morph"),
+        os(&g),
+        os(&h),
+        os("-o"),
+        os(&out),
+        os("--pose"),
+        os(&lower),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("has no skeleton"), "{}", stderr(&o));
+    // Usage: a time outside (0, 1), the triangle method, a missing file.
+    for bad in [&["--pose", "1.0=x.svg"][..], &["--pose", "nonsense"]] {
+        let mut args = vec![os("morph"), os(&s), os(&t), os("-o"), os(&out)];
+        args.extend(bad.iter().map(os));
+        assert_eq!(run(&args).status.code(), Some(2), "{bad:?}");
+    }
+    let full = format!("0.5={}", fixture("dancer/pose-0.5.svg").display());
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&out),
+        os("--pose"),
+        os(&full),
+        os("--method"),
+        os("linear"),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&out),
+        os("--pose"),
+        os("0.5=missing.svg"),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("missing.svg"), "{}", stderr(&o));
 }

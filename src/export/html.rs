@@ -28,6 +28,9 @@ pub struct PreviewMesh<'a> {
     /// Rounding step of the embedded coordinates, in user units (a small fraction of the
     /// drawing's size: the overlay is a visual aid, not data).
     pub precision: f64,
+    /// More segments to overlay, as pairs of indices into each frame's points: with skeleton
+    /// control, the bones between joints appended after the mesh vertices (§4.2).
+    pub extra_edges: &'a [[u32; 2]],
 }
 
 /// One standalone HTML page previewing the morph: `animated_svg` (an SVG document whose SMIL
@@ -146,6 +149,11 @@ fn page_data(tl: &Timeline, mesh: &PreviewMesh<'_>) -> String {
                 if a != b && (a as usize) < vertices && (b as usize) < vertices {
                     edges.insert((a.min(b), a.max(b)));
                 }
+            }
+        }
+        for &[a, b] in mesh.extra_edges {
+            if a != b && (a as usize) < vertices && (b as usize) < vertices {
+                edges.insert((a.min(b), a.max(b)));
             }
         }
     }
@@ -416,8 +424,35 @@ mod tests {
             triangles: &tris,
             frames: &frames,
             precision: 0.01,
+            extra_edges: &[],
         };
         preview_html(title, SVG, &tl, &mesh)
+    }
+
+    #[test]
+    fn extra_edges_join_the_overlay() {
+        let frames = mesh_frames(3);
+        let tris = [[0, 1, 2]];
+        let tl = Timeline {
+            frames: 3,
+            ..Timeline::default()
+        };
+        let with = |extra: &[[u32; 2]]| {
+            let mesh = PreviewMesh {
+                triangles: &tris,
+                frames: &frames,
+                precision: 0.01,
+                extra_edges: extra,
+            };
+            numbers(&preview_html("t", SVG, &tl, &mesh), "edges")
+        };
+        assert_eq!(with(&[]).len(), 6);
+        // A segment to the fourth point (a joint after the mesh vertices); one out of range
+        // is ignored.
+        assert_eq!(
+            with(&[[2, 3], [3, 9]]),
+            vec![0.0, 1.0, 0.0, 2.0, 1.0, 2.0, 2.0, 3.0]
+        );
     }
 
     /// The line holding `"key": [...]` in the page data, as numbers.
@@ -527,6 +562,7 @@ mod tests {
             triangles: &[[0, 1, 7]],
             frames: &frames,
             precision: f64::NAN,
+            extra_edges: &[],
         };
         let p = preview_html("x", SVG, &Timeline::default(), &mesh);
         assert!(p.contains("\"samples\": []"));

@@ -12,5 +12,5 @@ pub mod timeline;
 pub use apng::encode_apng;
 pub use gif::encode_gif;
 pub use html::{preview_html, PreviewMesh};
-pub use morph::Morph;
+pub use morph::{Morph, Motion};
 pub use timeline::{Easing, Playback, Timeline};

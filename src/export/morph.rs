@@ -12,23 +12,63 @@ use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::render::{animated_svg, frame_pixmap, frame_svg, FrameOptions};
 use crate::rigid::Interpolator;
+use crate::skeleton::SkeletonControl;
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
-/// The compatible meshes, their interpolator and the bound artwork, with the frame settings.
+/// What moves the mesh: the rigid interpolation alone, or steered by a skeleton (§4.2).
+#[derive(Debug)]
+pub enum Motion {
+    /// Plain interpolation (§4.1, or a baseline method).
+    Plain(Box<Interpolator>),
+    /// Disc-based interpolation adjusted to meet control poses (§4.2).
+    Skeleton(Box<SkeletonControl>),
+}
+
+impl From<Interpolator> for Motion {
+    fn from(i: Interpolator) -> Self {
+        Motion::Plain(Box::new(i))
+    }
+}
+
+impl From<SkeletonControl> for Motion {
+    fn from(c: SkeletonControl) -> Self {
+        Motion::Skeleton(Box::new(c))
+    }
+}
+
+impl Motion {
+    /// The mesh at `t`.
+    pub fn at_vec(&self, t: f64) -> Vec<Point> {
+        match self {
+            Motion::Plain(i) => i.at_vec(t),
+            Motion::Skeleton(c) => c.at_vec(t),
+        }
+    }
+
+    /// Meshes at many times, in parallel.
+    pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
+        match self {
+            Motion::Plain(i) => i.frames(ts),
+            Motion::Skeleton(c) => c.frames(ts),
+        }
+    }
+}
+
+/// The compatible meshes, their motion and the bound artwork, with the frame settings.
 pub struct Morph {
     meshes: CompatibleMeshes,
-    interpolator: Interpolator,
+    motion: Motion,
     artwork: ArtworkPair,
     frame: FrameOptions,
 }
 
 impl Morph {
     /// Binds both scenes to the meshes (flattened for a quarter pixel at `frame`'s size) and
-    /// keeps the interpolator for every later frame.
+    /// keeps the motion (an [`Interpolator`] or a [`SkeletonControl`]) for every later frame.
     pub fn new(
         meshes: CompatibleMeshes,
-        interpolator: Interpolator,
+        motion: impl Into<Motion>,
         source: &Scene,
         target: &Scene,
         frame: FrameOptions,
@@ -36,7 +76,7 @@ impl Morph {
         let artwork = ArtworkPair::new(source, target, &meshes, frame.flatten_tolerance())?;
         Ok(Morph {
             meshes,
-            interpolator,
+            motion: motion.into(),
             artwork,
             frame,
         })
@@ -52,15 +92,19 @@ impl Morph {
         &self.frame
     }
 
+    /// The motion driving the mesh.
+    pub fn motion(&self) -> &Motion {
+        &self.motion
+    }
+
     /// The mesh at `t` (§4.1).
     pub fn vertices_at(&self, t: f64) -> Vec<Point> {
-        self.interpolator.at_vec(t)
+        self.motion.at_vec(t)
     }
 
     /// The mesh at every frame of `timeline` (at its eased times), computed in parallel.
     pub fn vertex_frames(&self, timeline: &Timeline) -> Vec<Vec<Point>> {
-        self.interpolator
-            .frames(&timeline.sanitized().morph_times())
+        self.motion.frames(&timeline.sanitized().morph_times())
     }
 
     /// The source and target artwork placed in the mesh at `t`: the exact input drawings at
@@ -132,7 +176,23 @@ impl Morph {
     pub fn html(&self, timeline: &Timeline, title: &str) -> Result<String> {
         let tl = timeline.sanitized();
         let svg = self.animated_svg(&tl)?;
-        let frames = self.vertex_frames(&tl);
+        let mut frames = self.vertex_frames(&tl);
+        // With skeleton control the overlay shows the skeleton each frame carries too: its
+        // joints appended after the mesh vertices, its bones as extra segments.
+        let mut bones = Vec::new();
+        if let Motion::Skeleton(c) = &self.motion {
+            let n = self.meshes.source.len() as u32;
+            bones = c
+                .skeleton()
+                .bones
+                .iter()
+                .map(|&[a, b]| [a + n, b + n])
+                .collect();
+            for f in &mut frames {
+                let joints = c.derived(f);
+                f.extend(joints);
+            }
+        }
         // Overlay coordinates to a tenth of an output pixel.
         let precision = 0.1 / self.frame.scale();
         let mesh = PreviewMesh {
@@ -143,6 +203,7 @@ impl Morph {
             } else {
                 0.01
             },
+            extra_edges: &bones,
         };
         Ok(preview_html(title, &svg, &tl, &mesh))
     }

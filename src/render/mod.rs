@@ -16,6 +16,7 @@ mod tree;
 pub use animated::animated_svg;
 pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba, svg_png};
 pub use svg_frame::{frame_svg, scene_svg};
+pub(crate) use tree::fixed;
 
 use crate::artwork::{Rgba, Scene};
 use crate::geometry::Point;

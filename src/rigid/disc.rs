@@ -182,6 +182,9 @@ impl LocalTransforms {
 /// One precomputed term of the per-frame right-hand side.
 #[derive(Debug, Clone, Copy)]
 struct EdgeTerm {
+    /// The edge's end points.
+    vi: u32,
+    vj: u32,
     /// Right-hand-side rows of the edge's end points.
     ri: u32,
     rj: u32,
@@ -291,6 +294,8 @@ impl DiscRigid {
             .iter()
             .enumerate()
             .map(|(k, &(i, j))| EdgeTerm {
+                vi: i,
+                vj: j,
                 ri: system.rhs_index(i) as u32,
                 rj: system.rhs_index(j) as u32,
                 wd: local.d[k] * local.weight[k],
@@ -359,6 +364,22 @@ impl DiscRigid {
         out: &mut [Point],
         ws: &mut FrameScratch,
     ) {
+        self.at_adjusted(t, targets, None, out, ws);
+    }
+
+    /// [`DiscRigid::at_with_targets`] with every local transformation of point `i`'s disc
+    /// further rotated and scaled by the complex factor `adjust[i]` (`scale · (cos θ, sin θ)`):
+    /// the bone transformations added to the disc transformations in §4.2.2. An edge's term
+    /// stands for the transformations of both end points' discs (`L_(i,j)` and `L_(j,i)`, equal
+    /// before adjustment), so it takes the mean of the two factors.
+    pub(crate) fn at_adjusted(
+        &self,
+        t: f64,
+        targets: &[Point],
+        adjust: Option<&[Point]>,
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+    ) {
         ws.rotations(t, &self.alpha);
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
@@ -366,7 +387,11 @@ impl DiscRigid {
         let (rx, ry) = rhs.split_at_mut(stride);
         for ((e, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
             let f = 1.0 + t * e.s1;
-            let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
+            let mut l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
+            if let Some(a) = adjust {
+                let m = (a[e.vi as usize] + a[e.vj as usize]) * 0.5;
+                l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
+            }
             rx[e.rj as usize] += l.x;
             ry[e.rj as usize] += l.y;
             rx[e.ri as usize] -= l.x;

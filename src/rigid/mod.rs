@@ -23,7 +23,7 @@ mod triangle;
 
 use crate::error::{Error, Result};
 use crate::geometry::Point;
-use disc::{DiscRigid, FrameScratch};
+pub(crate) use disc::{DiscRigid, ExtraRow, FrameScratch};
 use rayon::prelude::*;
 use triangle::TriangleRigid;
 

@@ -6,3 +6,4 @@ mod errors;
 mod export;
 mod motion;
 mod similarity;
+mod skeleton;
