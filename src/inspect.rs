@@ -223,10 +223,7 @@ pub fn inspect_svg(c: &Compatible) -> String {
 
 /// [`inspect_svg`] with a skeleton drawn over both panels: `bones`, the joints on the source
 /// (the reference skeleton) and on the target (the derived skeleton at t = 1), §4.2.
-pub fn inspect_svg_with_skeleton(
-    c: &Compatible,
-    skeleton: SkeletonPair<'_>,
-) -> String {
+pub fn inspect_svg_with_skeleton(c: &Compatible, skeleton: SkeletonPair<'_>) -> String {
     let m = &c.meshes;
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 1);
     let (wd, ht) = (format!("{}", 2.0 * PANEL), format!("{}", PANEL + CAPTION));

@@ -151,9 +151,12 @@ fn page_data(tl: &Timeline, mesh: &PreviewMesh<'_>) -> String {
                 }
             }
         }
+    }
+    let mut bones = BTreeSet::new();
+    if usable {
         for &[a, b] in mesh.extra_edges {
             if a != b && (a as usize) < vertices && (b as usize) < vertices {
-                edges.insert((a.min(b), a.max(b)));
+                bones.insert((a.min(b), a.max(b)));
             }
         }
     }
@@ -198,6 +201,10 @@ fn page_data(tl: &Timeline, mesh: &PreviewMesh<'_>) -> String {
     }
     s.push_str("],\n\"edges\": [");
     for (k, (a, b)) in edges.iter().enumerate() {
+        let _ = write!(s, "{}{a},{b}", if k > 0 { "," } else { "" });
+    }
+    s.push_str("],\n\"bones\": [");
+    for (k, (a, b)) in bones.iter().enumerate() {
         let _ = write!(s, "{}{a},{b}", if k > 0 { "," } else { "" });
     }
     s.push_str("],\n\"samples\": [");
@@ -290,6 +297,19 @@ const SCRIPT: &str = r##"(function () {
     overlay.style.display = "none";
     svg.appendChild(overlay);
   }
+  // The skeleton each frame carries, when the morph is steered by one: thicker, in teal.
+  var bonesPath = null;
+  if (overlay && D.bones.length) {
+    bonesPath = overlay.cloneNode(false);
+    bonesPath.setAttribute("id", "crmorph-skeleton-overlay");
+    bonesPath.setAttribute("stroke", "#00acc1");
+    bonesPath.setAttribute("stroke-opacity", "0.95");
+    bonesPath.setAttribute("stroke-width", "3");
+    bonesPath.setAttribute("stroke-linecap", "round");
+    svg.appendChild(bonesPath);
+    var text = meshBox.parentNode && meshBox.parentNode.lastChild;
+    if (text && text.nodeType === 3) { text.nodeValue = " show triangulation and skeleton"; }
+  }
 
   function ease(tau) {
     tau = Math.min(1, Math.max(0, tau));
@@ -308,19 +328,24 @@ const SCRIPT: &str = r##"(function () {
   function drawMesh(tau) {
     if (!overlay) { return; }
     overlay.style.display = meshBox.checked ? "" : "none";
+    if (bonesPath) { bonesPath.style.display = overlay.style.display; }
     if (!meshBox.checked) { return; }
     var ts = D.times, k = 0;
     while (k < ts.length - 2 && ts[k + 1] < tau) { k++; }
     var a = frames[k], b = frames[Math.min(k + 1, frames.length - 1)];
     var span = ts.length > 1 ? ts[k + 1] - ts[k] : 0;
     var w = span > 0 ? Math.min(1, Math.max(0, (tau - ts[k]) / span)) : 0;
-    var e = D.edges, parts = [];
     function x(i) { return +(a[2 * i] + w * (b[2 * i] - a[2 * i])).toFixed(3); }
     function y(i) { return +(a[2 * i + 1] + w * (b[2 * i + 1] - a[2 * i + 1])).toFixed(3); }
-    for (var j = 0; j < e.length; j += 2) {
-      parts.push("M" + x(e[j]) + " " + y(e[j]) + "L" + x(e[j + 1]) + " " + y(e[j + 1]));
+    function segments(e) {
+      var parts = [];
+      for (var j = 0; j < e.length; j += 2) {
+        parts.push("M" + x(e[j]) + " " + y(e[j]) + "L" + x(e[j + 1]) + " " + y(e[j + 1]));
+      }
+      return parts.join("");
     }
-    overlay.setAttribute("d", parts.join(""));
+    overlay.setAttribute("d", segments(D.edges));
+    if (bonesPath) { bonesPath.setAttribute("d", segments(D.bones)); }
   }
 
   var playing = smil, wasPlaying = false;
@@ -444,15 +469,21 @@ mod tests {
                 precision: 0.01,
                 extra_edges: extra,
             };
-            numbers(&preview_html("t", SVG, &tl, &mesh), "edges")
+            let page = preview_html("t", SVG, &tl, &mesh);
+            assert_eq!(
+                numbers(&page, "bones"),
+                if extra.is_empty() {
+                    vec![]
+                } else {
+                    vec![2.0, 3.0]
+                }
+            );
+            numbers(&page, "edges")
         };
         assert_eq!(with(&[]).len(), 6);
-        // A segment to the fourth point (a joint after the mesh vertices); one out of range
-        // is ignored.
-        assert_eq!(
-            with(&[[2, 3], [3, 9]]),
-            vec![0.0, 1.0, 0.0, 2.0, 1.0, 2.0, 2.0, 3.0]
-        );
+        // A segment to the fourth point (a joint after the mesh vertices) is a bone, kept apart
+        // from the mesh edges; one out of range is ignored.
+        assert_eq!(with(&[[2, 3], [3, 9]]).len(), 6);
     }
 
     /// The line holding `"key": [...]` in the page data, as numbers.
