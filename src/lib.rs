@@ -29,6 +29,7 @@
 //! [`mesh::sanity_check`]; [`quality`] measures frames.
 
 pub mod artwork;
+pub mod auto;
 pub mod compatible;
 pub mod correspondence;
 pub mod drawing;

@@ -351,8 +351,21 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing,
     opts.from_target = inputs.from == From::Target;
     opts.density = inputs.density;
     progress.stage("compatible triangulation");
+    if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
+        // Plain SVGs: control geometry from the artwork (automatic mode).
+        let (ss, ts) = (scene(&s)?, scene(&t)?);
+        let (c, report, s, t) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &opts)?;
+        progress.note(&format!("{}: {report}", inputs.source.display()));
+        return Ok((s, t, c));
+    }
     let c = build(&s, &t, &opts)?;
     Ok((s, t, c))
+}
+
+/// A drawing's artwork (its resources resolved beside the file).
+fn scene(d: &Drawing) -> Result<Scene> {
+    let dir = Path::new(&d.file).parent().map(|p| p.to_path_buf());
+    Ok(Scene::from_svg_in(&d.file, &d.svg, "controls", dir.as_deref())?)
 }
 
 /// The interpolator of `method` for the meshes, its errors naming the two inputs.
@@ -465,10 +478,7 @@ fn build_morph(
     progress.stage("interpolation");
     let motion = motion(inputs, method, steering, always_skeleton, &s, &c)?;
     progress.stage("binding the artwork");
-    let dir = |d: &Drawing| Path::new(&d.file).parent().map(|p| p.to_path_buf());
-    let guides = "controls";
-    let ss = Scene::from_svg_in(&s.file, &s.svg, guides, dir(&s).as_deref())?;
-    let ts = Scene::from_svg_in(&t.file, &t.svg, guides, dir(&t).as_deref())?;
+    let (ss, ts) = (scene(&s)?, scene(&t)?);
     let mut opts = FrameOptions::for_scene(&ss);
     if let Some((w, h)) = look.size {
         opts.size = (w, h);

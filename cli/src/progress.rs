@@ -7,6 +7,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// A stage-by-stage spinner (hidden when not on a terminal or when quiet).
 pub(crate) struct Progress {
     bar: ProgressBar,
+    quiet: bool,
 }
 
 impl Progress {
@@ -23,7 +24,15 @@ impl Progress {
             b.enable_steady_tick(std::time::Duration::from_millis(120));
             b
         };
-        Progress { bar }
+        Progress { bar, quiet }
+    }
+
+    /// A one-line note for the user on stderr (what automatic mode did, for example), unless
+    /// quiet; printed above the spinner.
+    pub(crate) fn note(&self, text: &str) {
+        if !self.quiet {
+            self.bar.suspend(|| eprintln!("note: {text}"));
+        }
     }
 
     /// Names the stage now running.

@@ -480,7 +480,11 @@ fn edges_of(c: &ControlCurve) -> impl Iterator<Item = (usize, Point, Point)> + '
 
 /// Features must lie inside the boundary and must not cross the boundary, each other, or
 /// themselves (§5 needs them as non-crossing constraints).
-fn validate_layout(boundary: &ControlCurve, features: &[ControlCurve], file: &str) -> Result<()> {
+pub(crate) fn validate_layout(
+    boundary: &ControlCurve,
+    features: &[ControlCurve],
+    file: &str,
+) -> Result<()> {
     for f in features {
         if !crate::geometry::point_in_polygon(f.points[0], &boundary.points) {
             return Err(Error::at(

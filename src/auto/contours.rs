@@ -1,0 +1,260 @@
+//! Contours of plain artwork: the feature curves automatic mode makes from a drawing with no
+//! control geometry.
+//!
+//! A filled path contributes its subpaths as closed contours, nested by containment: a subpath
+//! inside an odd number of the path's other subpaths is a hole (for `evenodd`, and for `nonzero`
+//! paths drawn the usual way, with holes wound against their outline). A path that is only
+//! stroked (outline icons) contributes its subpaths as centre lines, open or closed. Contours too
+//! small to matter (below 1/10,000 of the drawing's area, or centre lines shorter than 1/100 of
+//! its diagonal) are left to the artwork.
+
+use crate::artwork::{Item, Scene};
+use crate::geometry::{point_in_polygon, polygon_area, Point};
+
+/// What a contour outlines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContourKind {
+    /// The outer outline of a filled region.
+    Outline,
+    /// A hole of a filled region.
+    Hole,
+    /// The centre line of a stroke.
+    Stroke,
+}
+
+/// One contour of a drawing's artwork.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contour {
+    /// Flattened points in root user space (closed contours do not repeat the first point).
+    pub points: Vec<Point>,
+    /// Whether the last point connects back to the first.
+    pub closed: bool,
+    /// Outline, hole or stroke.
+    pub kind: ContourKind,
+    /// For a hole, the index of its outline in the same list.
+    pub parent: Option<usize>,
+    /// Paint-order index of the artwork path it comes from.
+    pub path: usize,
+    /// Enclosed area (absolute), or 0 for open centre lines.
+    pub area: f64,
+    /// Length of the polyline.
+    pub length: f64,
+    /// Area centroid (closed) or mean point (open).
+    pub centroid: Point,
+    /// Elongation: the ratio of the small to the large principal second moment, in (0, 1].
+    pub elongation: f64,
+}
+
+/// The contours of every path of `scene`, flattened at `tolerance` user units.
+pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
+    let (lo, hi) = scene.view_box;
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let min_area = 1e-4 * (w * h).abs();
+    let min_length = 1e-2 * (w * w + h * h).sqrt();
+    let mut out = Vec::new();
+    for (index, item) in scene.items().into_iter().enumerate() {
+        let Item::Path(p) = item else { continue };
+        let path = scene.root_transform * p.path.clone();
+        let subs = flatten(&path, tolerance);
+        if p.fill.is_some() {
+            let closed: Vec<Vec<Point>> = subs
+                .into_iter()
+                .map(|(pts, _)| pts)
+                .filter(|pts| pts.len() >= 3 && polygon_area(pts).abs() >= min_area)
+                .collect();
+            let first = out.len();
+            for (k, pts) in closed.iter().enumerate() {
+                let depth = closed
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, other)| j != k && contains(other, pts))
+                    .count();
+                let parent = if depth % 2 == 1 {
+                    // The smallest enclosing subpath at even depth is the outline.
+                    closed
+                        .iter()
+                        .enumerate()
+                        .filter(|&(j, other)| j != k && contains(other, pts))
+                        .min_by(|a, b| polygon_area(a.1).abs().total_cmp(&polygon_area(b.1).abs()))
+                        .map(|(j, _)| first + j)
+                } else {
+                    None
+                };
+                let kind = if parent.is_some() {
+                    ContourKind::Hole
+                } else {
+                    ContourKind::Outline
+                };
+                out.push(describe(pts.clone(), true, kind, parent, index));
+            }
+        } else if p.stroke.is_some() {
+            for (pts, closed) in subs {
+                let c = describe(pts, closed, ContourKind::Stroke, None, index);
+                if c.points.len() >= 2 && c.length >= min_length {
+                    out.push(c);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Whether polygon `outer` contains polygon `inner` (tested at its first and middle points).
+fn contains(outer: &[Point], inner: &[Point]) -> bool {
+    point_in_polygon(inner[0], outer) && point_in_polygon(inner[inner.len() / 2], outer)
+}
+
+fn describe(
+    points: Vec<Point>,
+    closed: bool,
+    kind: ContourKind,
+    parent: Option<usize>,
+    path: usize,
+) -> Contour {
+    let n = points.len();
+    let edges = if closed { n } else { n.saturating_sub(1) };
+    let length: f64 = (0..edges)
+        .map(|i| points[i].distance(points[(i + 1) % n]))
+        .sum();
+    let (area, centroid, elongation) = if closed && n >= 3 {
+        moments(&points)
+    } else {
+        let c = points.iter().copied().sum::<Point>() / n.max(1) as f64;
+        let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
+        for p in &points {
+            let d = *p - c;
+            xx += d.x * d.x;
+            yy += d.y * d.y;
+            xy += d.x * d.y;
+        }
+        (0.0, c, elongation_of(xx, yy, xy))
+    };
+    Contour {
+        points,
+        closed,
+        kind,
+        parent,
+        path,
+        area,
+        length,
+        centroid,
+        elongation,
+    }
+}
+
+/// Area, centroid and elongation of a simple polygon from its area moments (Green's theorem).
+fn moments(p: &[Point]) -> (f64, Point, f64) {
+    let n = p.len();
+    let (mut a, mut cx, mut cy, mut ixx, mut iyy, mut ixy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for i in 0..n {
+        let (q, r) = (p[i], p[(i + 1) % n]);
+        let c = q.x * r.y - r.x * q.y;
+        a += c;
+        cx += (q.x + r.x) * c;
+        cy += (q.y + r.y) * c;
+        ixx += (q.y * q.y + q.y * r.y + r.y * r.y) * c;
+        iyy += (q.x * q.x + q.x * r.x + r.x * r.x) * c;
+        ixy += (q.x * r.y + 2.0 * q.x * q.y + 2.0 * r.x * r.y + r.x * q.y) * c;
+    }
+    a *= 0.5;
+    if a.abs() < 1e-300 {
+        return (0.0, p[0], 1.0);
+    }
+    let c = Point::new(cx / (6.0 * a), cy / (6.0 * a));
+    // Central second moments.
+    let yy = ixx / 12.0 - a * c.y * c.y;
+    let xx = iyy / 12.0 - a * c.x * c.x;
+    let xy = ixy / 24.0 - a * c.x * c.y;
+    (a.abs(), c, elongation_of(xx, yy, xy))
+}
+
+/// Small over large eigenvalue of the 2×2 moment matrix `[[xx, xy], [xy, yy]]`.
+fn elongation_of(xx: f64, yy: f64, xy: f64) -> f64 {
+    let m = 0.5 * (xx + yy);
+    let d = (0.25 * (xx - yy) * (xx - yy) + xy * xy).sqrt();
+    let (l1, l2) = (m + d, m - d);
+    if l1.abs() > 1e-300 {
+        (l2 / l1).clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
+}
+
+/// Subpaths of `path` as polylines (closed ones without the repeated first point).
+fn flatten(path: &kurbo::BezPath, tolerance: f64) -> Vec<(Vec<Point>, bool)> {
+    let mut out: Vec<(Vec<Point>, bool)> = Vec::new();
+    let mut cur: Vec<Point> = Vec::new();
+    let mut closed = false;
+    let mut finish = |cur: &mut Vec<Point>, closed: &mut bool| {
+        if cur.len() > 1 && cur[0].distance(*cur.last().unwrap()) <= 1e-9 {
+            cur.pop();
+            *closed = true;
+        }
+        if cur.len() >= 2 {
+            out.push((std::mem::take(cur), *closed));
+        }
+        cur.clear();
+        *closed = false;
+    };
+    kurbo::flatten(path, tolerance.max(1e-9), |el| match el {
+        kurbo::PathEl::MoveTo(p) => {
+            finish(&mut cur, &mut closed);
+            cur.push(Point::new(p.x, p.y));
+        }
+        kurbo::PathEl::LineTo(p) => {
+            let q = Point::new(p.x, p.y);
+            if cur.last().is_none_or(|l| l.distance(q) > 1e-9) {
+                cur.push(q);
+            }
+        }
+        kurbo::PathEl::ClosePath => {
+            closed = true;
+            finish(&mut cur, &mut closed);
+        }
+        _ => {}
+    });
+    finish(&mut cur, &mut closed);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene(body: &str) -> Scene {
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100" viewBox="0 0 100 100">{body}</svg>"#
+        );
+        Scene::from_svg("a.svg", &svg, "controls").unwrap()
+    }
+
+    #[test]
+    fn a_ring_is_an_outline_with_a_hole() {
+        let s = scene(
+            r##"<path fill-rule="evenodd" fill="#000" d="M10 10H90V90H10Z M30 30H70V70H30Z"/>"##,
+        );
+        let c = contours(&s, 0.05);
+        assert_eq!(c.len(), 2);
+        assert_eq!(c[0].kind, ContourKind::Outline);
+        assert_eq!(c[1].kind, ContourKind::Hole);
+        assert_eq!(c[1].parent, Some(0));
+        assert!((c[0].area - 6400.0).abs() < 1e-6);
+        assert!((c[0].centroid - Point::new(50.0, 50.0)).length() < 1e-9);
+        assert!((c[0].elongation - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn strokes_give_centre_lines_and_specks_are_skipped() {
+        let s = scene(
+            r##"<path fill="none" stroke="#000" stroke-width="2" d="M10 50 L90 50"/>
+                <circle cx="50" cy="20" r="0.2" fill="red"/>
+                <ellipse cx="50" cy="80" rx="20" ry="5" fill="blue"/>"##,
+        );
+        let c = contours(&s, 0.05);
+        assert_eq!(c.len(), 2, "{c:?}");
+        assert_eq!(c[0].kind, ContourKind::Stroke);
+        assert!(!c[0].closed && (c[0].length - 80.0).abs() < 1e-9);
+        assert_eq!(c[1].kind, ContourKind::Outline);
+        assert!((c[1].elongation - 1.0 / 16.0).abs() < 0.01, "{}", c[1].elongation);
+    }
+}
