@@ -365,7 +365,12 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing,
 /// A drawing's artwork (its resources resolved beside the file).
 fn scene(d: &Drawing) -> Result<Scene> {
     let dir = Path::new(&d.file).parent().map(|p| p.to_path_buf());
-    Ok(Scene::from_svg_in(&d.file, &d.svg, "controls", dir.as_deref())?)
+    Ok(Scene::from_svg_in(
+        &d.file,
+        &d.svg,
+        "controls",
+        dir.as_deref(),
+    )?)
 }
 
 /// The interpolator of `method` for the meshes, its errors naming the two inputs.

@@ -185,8 +185,11 @@ fn flatten(path: &kurbo::BezPath, tolerance: f64) -> Vec<(Vec<Point>, bool)> {
     let mut out: Vec<(Vec<Point>, bool)> = Vec::new();
     let mut cur: Vec<Point> = Vec::new();
     let mut closed = false;
+    // Ends closer than a few flattening tolerances meet: icon paths often end a hair away from
+    // where they began instead of closing with `Z`.
+    let meet = 4.0 * tolerance.max(1e-9);
     let mut finish = |cur: &mut Vec<Point>, closed: &mut bool| {
-        if cur.len() > 1 && cur[0].distance(*cur.last().unwrap()) <= 1e-9 {
+        if cur.len() > 2 && cur[0].distance(*cur.last().unwrap()) <= meet {
             cur.pop();
             *closed = true;
         }
@@ -255,6 +258,10 @@ mod tests {
         assert_eq!(c[0].kind, ContourKind::Stroke);
         assert!(!c[0].closed && (c[0].length - 80.0).abs() < 1e-9);
         assert_eq!(c[1].kind, ContourKind::Outline);
-        assert!((c[1].elongation - 1.0 / 16.0).abs() < 0.01, "{}", c[1].elongation);
+        assert!(
+            (c[1].elongation - 1.0 / 16.0).abs() < 0.01,
+            "{}",
+            c[1].elongation
+        );
     }
 }

@@ -47,7 +47,11 @@ pub fn cost(a: &Contour, b: &Contour, diagonal: f64) -> Option<f64> {
 }
 
 /// Pairs of indices `(source, target)` matched, sorted by source index.
-pub fn match_contours(source: &[Contour], target: &[Contour], diagonal: f64) -> Vec<(usize, usize)> {
+pub fn match_contours(
+    source: &[Contour],
+    target: &[Contour],
+    diagonal: f64,
+) -> Vec<(usize, usize)> {
     let tops = |c: &[Contour]| -> Vec<usize> {
         (0..c.len())
             .filter(|&i| c[i].kind != ContourKind::Hole)

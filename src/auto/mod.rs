@@ -32,7 +32,8 @@ const PADDING: f64 = 0.05;
 pub struct AutoReport {
     /// Contours found in the source and the target.
     pub contours: (usize, usize),
-    /// Feature names made, with the source and target contour indices.
+    /// Feature names made, with the source and target contour indices (`usize::MAX` for a seed:
+    /// a hole closing to, or opening from, a small spot).
     pub features: Vec<(String, usize, usize)>,
     /// Features dropped, with the reason.
     pub dropped: Vec<(String, String)>,
@@ -47,6 +48,14 @@ impl std::fmt::Display for AutoReport {
             self.contours.1,
             self.features.len()
         )?;
+        let seeds = self
+            .features
+            .iter()
+            .filter(|f| f.1 == usize::MAX || f.2 == usize::MAX)
+            .count();
+        if seeds > 0 {
+            write!(f, " ({seeds} of them holes closing or opening)")?;
+        }
         for (name, why) in &self.dropped {
             write!(f, "; dropped feature-{name} ({why})")?;
         }
@@ -80,11 +89,56 @@ pub fn build_auto(
         contours: (cs.len(), ct.len()),
         ..AutoReport::default()
     };
+    // Straight runs are split finely, so that the correspondence may start a closed contour
+    // anywhere along them, not only at a corner (a circle → square pair would otherwise turn by
+    // the angle to the nearest corner).
+    let step = s.tolerances.max_edge.min(t.tolerances.max_edge) * 0.5;
     for (k, &(a, b)) in pairs.iter().enumerate() {
         let name = format!("auto-{k}");
-        s.controls.features.push(feature(&name, &cs[a]));
-        t.controls.features.push(feature(&name, &ct[b]));
+        s.controls.features.push(feature(&name, &cs[a], step));
+        t.controls.features.push(feature(&name, &ct[b], step));
         report.features.push((name, a, b));
+    }
+    // A hole with no partner inside a matched outline closes to a small spot (or opens from
+    // one): a seed contour on the other side, where the outline pair carries the hole's centre.
+    let mut k = report.features.len();
+    for (holes, others, forward) in [(&cs, &ct, true), (&ct, &cs, false)] {
+        for (h, hole) in holes.iter().enumerate() {
+            let Some(parent) = hole.parent else { continue };
+            let taken = report
+                .features
+                .iter()
+                .any(|f| if forward { f.1 == h } else { f.2 == h });
+            let partner = report.features.iter().find_map(|f| {
+                let (mine, theirs) = if forward { (f.1, f.2) } else { (f.2, f.1) };
+                (mine == parent).then_some(theirs)
+            });
+            let (Some(other_parent), false) = (partner, taken) else {
+                continue;
+            };
+            let (pa, pb) = (&holes[parent], &others[other_parent]);
+            let scale = (pb.area / pa.area.max(1e-300)).sqrt();
+            let centre = pb.centroid + (hole.centroid - pa.centroid) * scale;
+            let radius = (0.15 * (hole.area / std::f64::consts::PI).sqrt() * scale)
+                .max(4.0 * s.tolerances.snap.max(t.tolerances.snap));
+            let seed = seed_circle(centre, radius, hole.points.len().clamp(12, 64));
+            let name = format!("auto-{k}");
+            k += 1;
+            let real = feature(&name, hole, step);
+            let spot = ControlCurve {
+                points: seed,
+                ..real.clone()
+            };
+            if forward {
+                s.controls.features.push(real);
+                t.controls.features.push(spot);
+                report.features.push((name, h, usize::MAX));
+            } else {
+                s.controls.features.push(spot);
+                t.controls.features.push(real);
+                report.features.push((name, usize::MAX, h));
+            }
+        }
     }
     // Drop features that break the layout rules (crossing, outside, self-crossing).
     loop {
@@ -103,7 +157,32 @@ pub fn build_auto(
     // Map; a failure names curves: drop the smallest feature it names (or the smallest of all)
     // and try again.
     loop {
-        match build(&s, &t, opts) {
+        // The disc interpolation must be able to run on the result too (no coincident
+        // neighbouring vertices): checked here, so that a feature it cannot take is dropped.
+        // It must also move without folding: frames at eighths of the morph are checked, and
+        // a feature whose alignment makes the interpolation fold is dropped like one the
+        // mapping cannot keep.
+        let built = build(&s, &t, opts).and_then(|c| {
+            let m = &c.meshes;
+            let interp = crate::rigid::Interpolator::new(
+                crate::rigid::Method::Disc,
+                &m.source,
+                &m.target,
+                &m.triangles,
+            )?;
+            let ts: Vec<f64> = (1..8).map(|i| i as f64 / 8.0).collect();
+            for (t, f) in ts.iter().zip(interp.frames(&ts)) {
+                let folded = crate::mesh::count_inverted(&m.triangles, &f);
+                if folded > 0 {
+                    return Err(Error::input(
+                        "<auto>",
+                        format!("the rigid interpolation folds {folded} triangles at t = {t}"),
+                    ));
+                }
+            }
+            Ok(c)
+        });
+        match built {
             Ok(c) => return Ok((c, report, s, t)),
             Err(e) => {
                 if s.controls.features.is_empty() {
@@ -116,14 +195,48 @@ pub fn build_auto(
     }
 }
 
-fn feature(name: &str, c: &Contour) -> ControlCurve {
+fn feature(name: &str, c: &Contour, step: f64) -> ControlCurve {
     ControlCurve {
         id: format!("feature-{name}"),
         name: name.to_string(),
         kind: CurveKind::Feature,
         closed: c.closed,
-        points: c.points.clone(),
+        points: densify(&c.points, c.closed, step),
     }
+}
+
+/// `points` with every edge longer than `step` split evenly.
+fn densify(points: &[Point], closed: bool, step: f64) -> Vec<Point> {
+    let n = points.len();
+    let edges = if closed { n } else { n.saturating_sub(1) };
+    let mut out = Vec::with_capacity(n);
+    for i in 0..edges {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        let k = if step > 0.0 {
+            ((a.distance(b) / step).ceil() as usize).clamp(1, 10_000)
+        } else {
+            1
+        };
+        for j in 0..k {
+            out.push(a + (b - a) * (j as f64 / k as f64));
+        }
+    }
+    if !closed {
+        if let Some(&last) = points.last() {
+            out.push(last);
+        }
+    }
+    out
+}
+
+/// A small circle (counter-clockwise in SVG coordinates like the outlines it stands for).
+fn seed_circle(centre: Point, radius: f64, n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
+            centre + Point::new(a.cos(), a.sin()) * radius
+        })
+        .collect()
 }
 
 /// Pads the viewBox boundary of an unmarked drawing (a rectangle) about its centre.
@@ -136,10 +249,7 @@ fn pad_boundary(d: &mut Drawing) {
     let pad = PADDING * (hi - lo).max_element();
     for p in pts.iter_mut() {
         let d = *p - c;
-        *p = c + Point::new(
-            d.x + pad * d.x.signum(),
-            d.y + pad * d.y.signum(),
-        );
+        *p = c + Point::new(d.x + pad * d.x.signum(), d.y + pad * d.y.signum());
     }
 }
 
@@ -163,12 +273,7 @@ fn named_feature(e: &Error, d: &Drawing) -> Option<String> {
 
 /// The name of the feature with the shortest outline.
 fn smallest(d: &Drawing) -> String {
-    let len = |c: &ControlCurve| -> f64 {
-        c.points
-            .windows(2)
-            .map(|w| w[0].distance(w[1]))
-            .sum()
-    };
+    let len = |c: &ControlCurve| -> f64 { c.points.windows(2).map(|w| w[0].distance(w[1])).sum() };
     d.controls
         .features
         .iter()
@@ -177,7 +282,13 @@ fn smallest(d: &Drawing) -> String {
         .unwrap_or_default()
 }
 
-fn drop_feature(s: &mut Drawing, t: &mut Drawing, report: &mut AutoReport, name: &str, why: &Error) {
+fn drop_feature(
+    s: &mut Drawing,
+    t: &mut Drawing,
+    report: &mut AutoReport,
+    name: &str,
+    why: &Error,
+) {
     s.controls.features.retain(|f| f.name != name);
     t.controls.features.retain(|f| f.name != name);
     report.features.retain(|f| f.0 != name);

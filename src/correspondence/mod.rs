@@ -284,8 +284,14 @@ pub fn correspond_all(
             }
             out.push(pair);
         }
+        // Candidates come least-turning first; a later one must fit the features clearly better
+        // (by 1 %), so that a tie between symmetric boundaries is not broken by rounding noise
+        // into a quarter turn.
         let misfit = feature_misfit(&out);
-        if best.as_ref().is_none_or(|(m, _)| misfit < *m - 1e-12) {
+        if best
+            .as_ref()
+            .is_none_or(|(m, _)| misfit < *m * (1.0 - 0.01) - 1e-12)
+        {
             best = Some((misfit, out));
         }
     }

@@ -1,0 +1,191 @@
+//! Automatic mode over the icon fixtures (`fixtures/icons/`, real icons with no markup): every
+//! pair morphs, the ends are the input drawings, the meshes stay flip-free, and the matched
+//! contours move as a designer expects — a rotated copy turns rigidly, a logo flipped upside
+//! down turns instead of shrinking through zero, a circle becomes a square without twisting.
+
+use std::path::{Path, PathBuf};
+
+use crmorph::artwork::Scene;
+use crmorph::auto::build_auto;
+use crmorph::compatible::MorphOptions;
+use crmorph::export::Morph;
+use crmorph::geometry::{polygon_area, Point, SimilarityFit};
+use crmorph::mesh::count_inverted;
+use crmorph::render::FrameOptions;
+use crmorph::rigid::{Interpolator, Method};
+
+use crate::common::{fixtures, open};
+
+fn icon_pairs() -> Vec<(String, PathBuf, PathBuf)> {
+    let mut v: Vec<_> = std::fs::read_dir(fixtures().join("icons"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("source.svg").exists())
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                p.join("source.svg"),
+                p.join("target.svg"),
+            )
+        })
+        .collect();
+    v.sort();
+    assert!(
+        v.len() >= 12,
+        "expected a dozen icon pairs, found {}",
+        v.len()
+    );
+    v
+}
+
+struct Auto {
+    morph: Morph,
+    /// Feature curves (name, mesh vertex chain, closed).
+    features: Vec<(String, Vec<u32>, bool)>,
+}
+
+fn auto(s: &Path, t: &Path) -> Auto {
+    let (ds, dt) = (open(s), open(t));
+    let scene = |p: &Path| {
+        Scene::from_svg_in(
+            &p.display().to_string(),
+            &std::fs::read_to_string(p).unwrap(),
+            "controls",
+            p.parent(),
+        )
+        .unwrap()
+    };
+    let (ss, ts) = (scene(s), scene(t));
+    let (c, _report, _, _) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", s.display()));
+    let m = &c.meshes;
+    let features = m
+        .curves
+        .iter()
+        .filter(|k| k.name != "boundary")
+        .map(|k| (k.name.clone(), k.vertices.clone(), k.closed))
+        .collect();
+    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+    // Icons are tiny (16–48 units): render at 192 px so that one antialiased edge pixel is not
+    // a large share of the picture.
+    let mut frame = FrameOptions::for_scene(&ss);
+    frame.size = (192, 192);
+    let morph = Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap();
+    Auto { morph, features }
+}
+
+fn chain(v: &[Point], idx: &[u32]) -> Vec<Point> {
+    idx.iter().map(|&i| v[i as usize]).collect()
+}
+
+#[test]
+fn every_icon_pair_morphs_flip_free_with_exact_ends() {
+    for (name, s, t) in icon_pairs() {
+        let a = auto(&s, &t);
+        let m = a.morph.meshes();
+        let ts: Vec<f64> = (0..=40).map(|i| i as f64 / 40.0).collect();
+        let frames = a.morph.vertex_frames(&crmorph::export::Timeline {
+            frames: 41,
+            ..Default::default()
+        });
+        assert_eq!(frames.len(), ts.len());
+        let inverted: usize = frames.iter().map(|f| count_inverted(&m.triangles, f)).sum();
+        eprintln!("{name}: {} features", a.features.len());
+        assert_eq!(inverted, 0, "{name}: inverted triangles over 41 frames");
+        assert_eq!(
+            count_inverted(&m.triangles, &m.target),
+            0,
+            "{name}: target mesh"
+        );
+        // The ends render as the input files (within antialiasing).
+        for (at, file) in [(0.0, &s), (1.0, &t)] {
+            let text = std::fs::read_to_string(file).unwrap();
+            let tree = usvg::Tree::from_str(&text, &usvg::Options::default()).unwrap();
+            let opts = *a.morph.frame_options();
+            let mut want = tiny_skia::Pixmap::new(opts.size.0, opts.size.1).unwrap();
+            let sx = opts.size.0 as f32 / tree.size().width();
+            let sy = opts.size.1 as f32 / tree.size().height();
+            resvg::render(
+                &tree,
+                tiny_skia::Transform::from_scale(sx, sy),
+                &mut want.as_mut(),
+            );
+            let got = a.morph.pixmap_at(at).unwrap();
+            let bad = want
+                .pixels()
+                .iter()
+                .zip(got.pixels())
+                .filter(|(p, q)| {
+                    p.alpha().abs_diff(q.alpha()) > 8
+                        || p.red().abs_diff(q.red()) > 8
+                        || p.green().abs_diff(q.green()) > 8
+                        || p.blue().abs_diff(q.blue()) > 8
+                })
+                .count();
+            assert!(
+                bad as f64 <= 0.005 * want.pixels().len() as f64,
+                "{name} at t = {at}: {bad} pixels differ from the input"
+            );
+        }
+    }
+}
+
+/// Best-fit rotation (degrees) and relative residual of `b` against `a` by a similarity.
+fn fit(a: &[Point], b: &[Point]) -> (f64, f64) {
+    let f = SimilarityFit::new(a, b);
+    let residual =
+        (f.to_spread - (f.dot * f.dot + f.cross * f.cross) / f.from_spread).max(0.0) / f.to_spread;
+    (f.cross.atan2(f.dot).to_degrees(), residual.sqrt())
+}
+
+#[test]
+fn a_circle_becomes_a_square_without_twisting() {
+    let dir = fixtures().join("icons/circle-to-square");
+    let a = auto(&dir.join("source.svg"), &dir.join("target.svg"));
+    assert_eq!(a.features.len(), 1);
+    let m = a.morph.meshes();
+    let (angle, _) = fit(
+        &chain(&m.source, &a.features[0].1),
+        &chain(&m.target, &a.features[0].1),
+    );
+    eprintln!("circle → square: the correspondence turns by {angle:.2}°");
+    assert!(angle.abs() < 5.0, "{angle}");
+}
+
+#[test]
+fn a_rotated_copy_turns_rigidly_and_a_flipped_logo_turns_instead_of_shrinking() {
+    let dir = fixtures().join("icons/nike-rotated");
+    let a = auto(&dir.join("source.svg"), &dir.join("target.svg"));
+    let m = a.morph.meshes();
+    let (_, idx, _) = &a.features[0];
+    let src = chain(&m.source, idx);
+    let mut worst = 0.0f64;
+    for i in 1..10 {
+        let t = i as f64 / 10.0;
+        let (angle, residual) = fit(&src, &chain(&a.morph.vertices_at(t), idx));
+        eprintln!("nike at t = {t}: turned {angle:.2}°, off a similarity by {residual:.4}");
+        worst = worst.max(residual);
+        assert!((angle.abs() - 90.0 * t).abs() < 10.0, "t = {t}: {angle}°");
+    }
+    assert!(
+        worst < 0.05,
+        "the rotated copy is not moved rigidly: {worst}"
+    );
+    // The apple turned upside down: its area never dips, it turns half round.
+    let dir = fixtures().join("icons/apple-flipped");
+    let a = auto(&dir.join("source.svg"), &dir.join("target.svg"));
+    let m = a.morph.meshes();
+    let area = |v: &[Point]| -> f64 {
+        a.features
+            .iter()
+            .filter(|f| f.2)
+            .map(|f| polygon_area(&chain(v, &f.1)).abs())
+            .sum()
+    };
+    let (a0, a1) = (area(&m.source), area(&m.target));
+    for i in 1..10 {
+        let t = i as f64 / 10.0;
+        let ratio = area(&a.morph.vertices_at(t)) / ((1.0 - t) * a0 + t * a1);
+        assert!(ratio > 0.9, "apple at t = {t}: area {ratio} of the blend");
+    }
+}
