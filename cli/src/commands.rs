@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use crmorph::artwork::{Rgba, Scene};
+use crmorph::auto::geometric::MorphingPath;
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
 use crmorph::export::{Easing, Morph, Motion, Playback, Timeline};
@@ -343,7 +344,11 @@ fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
     Ok((s, t))
 }
 
-fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing, Compatible)> {
+/// The two drawings (with automatic control geometry when unmarked), their compatible
+/// triangulation, and in automatic mode the artwork paths that morph as one shape.
+type Prepared = (Drawing, Drawing, Compatible, Vec<MorphingPath>);
+
+fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
     refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
     progress.stage("reading drawings");
     let (s, t) = read_both(inputs)?;
@@ -356,10 +361,10 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Drawing, Drawing,
         let (ss, ts) = (scene(&s)?, scene(&t)?);
         let (c, report, s, t) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &opts)?;
         progress.note(&format!("{}: {report}", inputs.source.display()));
-        return Ok((s, t, c));
+        return Ok((s, t, c, report.morphing));
     }
     let c = build(&s, &t, &opts)?;
-    Ok((s, t, c))
+    Ok((s, t, c, Vec::new()))
 }
 
 /// A drawing's artwork (its resources resolved beside the file).
@@ -396,7 +401,7 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         &[Format::Svg, Format::Png, Format::Json],
         "inspect",
     )?;
-    let (s, _, c) = compatible(&a.inputs, progress)?;
+    let (s, _, c, _) = compatible(&a.inputs, progress)?;
     // The reference skeleton, if the source has one, and where the target mesh carries it.
     let skeleton = if s.controls.skeleton.is_empty() {
         None
@@ -479,7 +484,7 @@ fn build_morph(
     always_skeleton: bool,
     progress: &Progress,
 ) -> Result<Morph> {
-    let (s, t, c) = compatible(inputs, progress)?;
+    let (s, t, c, paths) = compatible(inputs, progress)?;
     progress.stage("interpolation");
     let motion = motion(inputs, method, steering, always_skeleton, &s, &c)?;
     progress.stage("binding the artwork");
@@ -489,7 +494,16 @@ fn build_morph(
         opts.size = (w, h);
     }
     opts.background = look.background;
-    Ok(Morph::new(c.meshes, motion, &ss, &ts, opts)?)
+    // Paths morphing as one shape follow the plain interpolation's mesh; with the disc
+    // method only (the baselines are for comparing the mesh motion).
+    let paths = if method == MethodArg::Disc {
+        paths
+    } else {
+        Vec::new()
+    };
+    Ok(Morph::with_morphing_paths(
+        c.meshes, motion, &ss, &ts, opts, paths,
+    )?)
 }
 
 /// Runs `frame`.
@@ -500,7 +514,7 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         "frame",
     )?;
     let bytes = if fmt == Format::Json {
-        let (s, _, c) = compatible(&a.inputs, progress)?;
+        let (s, _, c, _) = compatible(&a.inputs, progress)?;
         progress.stage("interpolation");
         // With a skeleton in the source, the frame carries it (always through skeleton
         // control, which without poses is the plain disc interpolation).

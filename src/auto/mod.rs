@@ -5,7 +5,7 @@
 //! geometry itself:
 //! - the domain boundary is the viewBox rectangle of each drawing, padded by 5 % of its larger
 //!   side so that artwork touching the edge stays inside;
-//! - the artwork's contours ([`contours`]: fill outlines, their holes, stroke centre lines) are
+//! - the artwork's contours ([`contours`](mod@contours): fill outlines, their holes, stroke centre lines) are
 //!   matched across the drawings ([`matching`]) and every matched pair becomes a feature curve
 //!   `feature-auto-K` in both;
 //! - a pair that cannot be a feature — it crosses another feature, itself, or the boundary, or the
@@ -14,6 +14,7 @@
 //!   because of a feature it chose itself.
 
 pub mod contours;
+pub mod geometric;
 pub mod matching;
 
 use crate::artwork::Scene;
@@ -37,6 +38,8 @@ pub struct AutoReport {
     pub features: Vec<(String, usize, usize)>,
     /// Features dropped, with the reason.
     pub dropped: Vec<(String, String)>,
+    /// Artwork paths that morph as one shape ([`geometric`]).
+    pub morphing: Vec<geometric::MorphingPath>,
 }
 
 impl std::fmt::Display for AutoReport {
@@ -55,6 +58,9 @@ impl std::fmt::Display for AutoReport {
             .count();
         if seeds > 0 {
             write!(f, " ({seeds} of them holes closing or opening)")?;
+        }
+        if !self.morphing.is_empty() {
+            write!(f, "; {} paths morph as one shape", self.morphing.len())?;
         }
         for (name, why) in &self.dropped {
             write!(f, "; dropped feature-{name} ({why})")?;
@@ -183,7 +189,17 @@ pub fn build_auto(
             Ok(c)
         });
         match built {
-            Ok(c) => return Ok((c, report, s, t)),
+            Ok(c) => {
+                report.morphing = geometric::morphing_paths(
+                    source_scene,
+                    target_scene,
+                    &cs,
+                    &ct,
+                    &report.features,
+                    &c.meshes,
+                );
+                return Ok((c, report, s, t));
+            }
             Err(e) => {
                 if s.controls.features.is_empty() {
                     return Err(e);

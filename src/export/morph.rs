@@ -6,11 +6,14 @@
 //! sequences are computed in parallel.
 
 use crate::artwork::{ArtworkPair, Scene};
+use crate::auto::geometric::{overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::{encode_apng, encode_gif, preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
-use crate::render::{animated_svg, frame_pixmap, frame_svg, FrameOptions};
+use crate::render::{
+    animated_svg_with_overlays, frame_pixmap_with_overlay, frame_svg_with_overlay, FrameOptions,
+};
 use crate::rigid::Interpolator;
 use crate::skeleton::SkeletonControl;
 use rayon::prelude::*;
@@ -61,6 +64,15 @@ pub struct Morph {
     motion: Motion,
     artwork: ArtworkPair,
     frame: FrameOptions,
+    /// Artwork that morphs as one shape, and the rest of the artwork bound without it.
+    morphing: Option<Morphing>,
+}
+
+/// The in-between frames' split of the artwork when some paths morph as one shape.
+struct Morphing {
+    paths: Vec<MorphingPath>,
+    rest: ArtworkPair,
+    header: Scene,
 }
 
 impl Morph {
@@ -79,7 +91,62 @@ impl Morph {
             motion: motion.into(),
             artwork,
             frame,
+            morphing: None,
         })
+    }
+
+    /// [`Morph::new`] where `paths` (automatic mode's matched artwork,
+    /// [`crate::auto::geometric`]) morph as one shape each: in-between frames draw them over
+    /// the blend of the rest of the artwork. Frames t = 0 and t = 1 stay the exact input
+    /// drawings.
+    pub fn with_morphing_paths(
+        meshes: CompatibleMeshes,
+        motion: impl Into<Motion>,
+        source: &Scene,
+        target: &Scene,
+        frame: FrameOptions,
+        paths: Vec<MorphingPath>,
+    ) -> Result<Self> {
+        let mut m = Morph::new(meshes, motion, source, target, frame)?;
+        if !paths.is_empty() {
+            let s_items: Vec<usize> = paths.iter().map(|p| p.source_item).collect();
+            let t_items: Vec<usize> = paths.iter().map(|p| p.target_item).collect();
+            let rest = ArtworkPair::new(
+                &source.without_items(&s_items),
+                &target.without_items(&t_items),
+                &m.meshes,
+                frame.flatten_tolerance(),
+            )?;
+            m.morphing = Some(Morphing {
+                paths,
+                rest,
+                header: source.clone(),
+            });
+        }
+        Ok(m)
+    }
+
+    /// The overlay of morphing paths at `t` with mesh `v`, if any.
+    fn overlay(&self, v: &[Point], t: f64) -> Option<Scene> {
+        self.morphing
+            .as_ref()
+            .map(|m| overlay_at(&m.paths, &self.meshes, v, t, &m.header))
+    }
+
+    /// Source and target scenes at `t` and the overlay: the exact inputs at the ends; in
+    /// between, with morphing paths, the rest of the artwork and the paths over it.
+    fn layers_at(&self, t: f64) -> Result<(Scene, Scene, Option<Scene>)> {
+        let v = self.vertices_at(t);
+        match &self.morphing {
+            Some(m) if t > 0.0 && t < 1.0 => {
+                let (s, g) = m.rest.at(&v)?;
+                Ok((s, g, self.overlay(&v, t)))
+            }
+            _ => {
+                let (s, g) = self.artwork.at(&v)?;
+                Ok((s, g, None))
+            }
+        }
     }
 
     /// The compatible meshes.
@@ -115,14 +182,14 @@ impl Morph {
 
     /// Frame `t` as a standalone SVG.
     pub fn svg_at(&self, t: f64) -> Result<String> {
-        let (s, g) = self.scenes_at(t)?;
-        frame_svg(&s, &g, t, &self.frame)
+        let (s, g, o) = self.layers_at(t)?;
+        frame_svg_with_overlay(&s, &g, o.as_ref(), t, &self.frame)
     }
 
     /// Frame `t` rendered (premultiplied RGBA over the background).
     pub fn pixmap_at(&self, t: f64) -> Result<Pixmap> {
-        let (s, g) = self.scenes_at(t)?;
-        frame_pixmap(&s, &g, t, &self.frame)
+        let (s, g, o) = self.layers_at(t)?;
+        frame_pixmap_with_overlay(&s, &g, o.as_ref(), t, &self.frame)
     }
 
     /// Every frame of `timeline` as a standalone SVG, in frame order.
@@ -150,12 +217,21 @@ impl Morph {
 
     /// The whole morph as one animated SVG (SMIL; see [`crate::render::animated`]).
     pub fn animated_svg(&self, timeline: &Timeline) -> Result<String> {
-        let frames = self.vertex_frames(timeline);
+        let tl = timeline.sanitized();
+        let frames = self.vertex_frames(&tl);
+        let pair = self.morphing.as_ref().map_or(&self.artwork, |m| &m.rest);
         let keyframes = frames
             .par_iter()
-            .map(|v| self.artwork.warped_at(v))
+            .map(|v| pair.warped_at(v))
             .collect::<Result<Vec<_>>>()?;
-        animated_svg(&keyframes, &timeline.sanitized(), &self.frame)
+        let overlays: Option<Vec<Scene>> = self.morphing.as_ref().map(|_| {
+            frames
+                .iter()
+                .zip(tl.morph_times())
+                .filter_map(|(v, t)| self.overlay(v, t))
+                .collect()
+        });
+        animated_svg_with_overlays(&keyframes, overlays.as_deref(), &tl, &self.frame)
     }
 
     /// The morph as an animated GIF (frames rendered in parallel; composited over the

@@ -44,6 +44,17 @@ pub fn animated_svg(
     timeline: &Timeline,
     opts: &FrameOptions,
 ) -> Result<String> {
+    animated_svg_with_overlays(keyframes, None, timeline, opts)
+}
+
+/// [`animated_svg`] with `overlays[i]` drawn over keyframe `i`'s blend (see
+/// [`super::svg_frame::frame_svg_with_overlay`]); every overlay must have the same structure.
+pub fn animated_svg_with_overlays(
+    keyframes: &[(Scene, Scene)],
+    overlays: Option<&[Scene]>,
+    timeline: &Timeline,
+    opts: &FrameOptions,
+) -> Result<String> {
     let timeline = timeline.sanitized();
     if keyframes.len() != timeline.frames {
         return Err(Error::internal(format!(
@@ -53,10 +64,17 @@ pub fn animated_svg(
         )));
     }
     let ts = timeline.morph_times();
+    if overlays.is_some_and(|o| o.len() != keyframes.len()) {
+        return Err(Error::internal("one overlay per keyframe"));
+    }
     let trees: Vec<Node> = keyframes
         .par_iter()
         .zip(&ts)
-        .map(|((s, t), &at)| frame_tree(s, t, at, opts, Mode::Keyframe))
+        .enumerate()
+        .map(|(i, ((s, t), &at))| {
+            let overlay = overlays.map(|o| &o[i]);
+            frame_tree(s, t, overlay, at, opts, Mode::Keyframe)
+        })
         .collect();
     let mut order = timeline.sequence();
     if timeline.playback == Playback::Yoyo {
@@ -205,6 +223,26 @@ fn attribute(
                 return (values[0].clone(), Vec::new());
             }
             (values[0].clone(), animate_transform(key, &ms, ctx))
+        }
+        Value::Color(_) => {
+            let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
+            if texts.iter().all(|t| *t == texts[0]) {
+                return (values[0].clone(), Vec::new());
+            }
+            let nums: Vec<Vec<f64>> = values
+                .iter()
+                .map(|v| match v {
+                    Value::Color(c) => vec![c.r as f64, c.g as f64, c.b as f64],
+                    _ => vec![0.0; 3],
+                })
+                .collect();
+            // Browsers interpolate colours channel by channel in sRGB; keyframes within one
+            // level of that are dropped.
+            let kept = keep(&nums, 1.0);
+            (
+                values[0].clone(),
+                vec![animate(key, &kept, |k| texts[k].clone(), ctx, false)],
+            )
         }
         Value::Text(_) => {
             let texts: Vec<String> = values.iter().map(|v| v.text()).collect();

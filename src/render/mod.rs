@@ -13,9 +13,12 @@ mod raster;
 pub mod svg_frame;
 mod tree;
 
-pub use animated::animated_svg;
-pub use raster::{encode_png, frame_pixmap, frame_png, render_scene, straight_rgba, svg_png};
-pub use svg_frame::{frame_svg, scene_svg};
+pub use animated::{animated_svg, animated_svg_with_overlays};
+pub use raster::{
+    encode_png, frame_pixmap, frame_pixmap_with_overlay, frame_png, render_scene, straight_rgba,
+    svg_png,
+};
+pub use svg_frame::{frame_svg, frame_svg_with_overlay, scene_svg};
 pub(crate) use tree::fixed;
 
 use crate::artwork::{Rgba, Scene};

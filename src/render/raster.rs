@@ -49,8 +49,20 @@ fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
 /// blended `(1 − t)·S + t·T` on premultiplied RGBA, over `opts.background` if any. At t = 0 and
 /// t = 1 only that side is rendered.
 pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<Pixmap> {
+    frame_pixmap_with_overlay(source, target, None, t, opts)
+}
+
+/// [`frame_pixmap`] with `overlay` rendered over the blend (source-over), before the
+/// background: the artwork that morphs as one shape.
+pub fn frame_pixmap_with_overlay(
+    source: &Scene,
+    target: &Scene,
+    overlay: Option<&Scene>,
+    t: f64,
+    opts: &FrameOptions,
+) -> Result<Pixmap> {
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
-    let blended = if t == 0.0 {
+    let mut blended = if t == 0.0 {
         render_scene(source, opts)?
     } else if t == 1.0 {
         render_scene(target, opts)?
@@ -60,6 +72,17 @@ pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions)
         blend_into(&mut s, &d, t);
         s
     };
+    if let Some(o) = overlay {
+        let top = render_side(o, opts)?;
+        blended.draw_pixmap(
+            0,
+            0,
+            top.as_ref(),
+            &PixmapPaint::default(),
+            Transform::identity(),
+            None,
+        );
+    }
     match opts.background {
         None => Ok(blended),
         Some(bg) => {

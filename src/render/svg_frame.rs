@@ -46,7 +46,19 @@ pub fn scene_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
 /// The frame at `t` blending the warped `source` and `target` scenes (see the module docs for
 /// how). `t` is clamped to [0, 1]; at the ends the frame is [`scene_svg`] of that side.
 pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<String> {
-    frame_tree(source, target, t, opts, Mode::Still).to_svg_string()
+    frame_tree(source, target, None, t, opts, Mode::Still).to_svg_string()
+}
+
+/// [`frame_svg`] with `overlay` drawn over the blend, unblended: the artwork that morphs as one
+/// shape (automatic mode's matched paths) rather than as two cross-faded ones.
+pub fn frame_svg_with_overlay(
+    source: &Scene,
+    target: &Scene,
+    overlay: Option<&Scene>,
+    t: f64,
+    opts: &FrameOptions,
+) -> Result<String> {
+    frame_tree(source, target, overlay, t, opts, Mode::Still).to_svg_string()
 }
 
 /// How far (in output pixels) a curve fitted to warped artwork may stray from the warped
@@ -83,10 +95,19 @@ pub(crate) fn side_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
 
 /// One drawing alone, as a tree.
 pub(crate) fn scene_tree(scene: &Scene, opts: &FrameOptions) -> Node {
+    scene_tree_with(scene, None, opts)
+}
+
+/// One drawing alone with an overlay over it, as a tree.
+fn scene_tree_with(scene: &Scene, overlay: Option<&Scene>, opts: &FrameOptions) -> Node {
     let mut doc = Document::new(opts, None, false);
     let mut defs = Builder::new();
     let mut body = Builder::new();
     doc.side(scene, "a", &mut defs, &mut body);
+    if let Some(o) = overlay {
+        doc.fit = Some(FIT_PIXELS / opts.scale());
+        doc.side(o, "o", &mut defs, &mut body);
+    }
     doc.finish(opts, defs, body)
 }
 
@@ -94,6 +115,7 @@ pub(crate) fn scene_tree(scene: &Scene, opts: &FrameOptions) -> Node {
 pub(crate) fn frame_tree(
     source: &Scene,
     target: &Scene,
+    overlay: Option<&Scene>,
     t: f64,
     opts: &FrameOptions,
     mode: Mode,
@@ -101,10 +123,10 @@ pub(crate) fn frame_tree(
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
     if mode == Mode::Still {
         if t == 0.0 {
-            return scene_tree(source, opts);
+            return scene_tree_with(source, overlay, opts);
         }
         if t == 1.0 {
-            return scene_tree(target, opts);
+            return scene_tree_with(target, overlay, opts);
         }
     }
     let tol = match mode {
@@ -194,6 +216,9 @@ pub(crate) fn frame_tree(
     body.close();
     body.close();
     body.close();
+    if let Some(o) = overlay {
+        doc.side(o, "o", &mut defs, &mut body);
+    }
     doc.finish(opts, defs, body)
 }
 
@@ -439,7 +464,7 @@ impl Document {
         defs: &mut Builder,
     ) -> Value {
         match paint {
-            Paint::Color(c) => hex(*c).into(),
+            Paint::Color(c) => Value::Color(*c),
             Paint::Gradient(g) => {
                 let id = format!("{prefix}{}", self.next_id);
                 self.next_id += 1;

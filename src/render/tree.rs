@@ -49,6 +49,8 @@ pub(crate) enum Value {
     },
     /// A `matrix(…)` transform.
     Matrix(Affine),
+    /// An opaque colour, written `#rrggbb` (alpha goes in a separate opacity attribute).
+    Color(crate::artwork::Rgba),
 }
 
 impl From<String> for Value {
@@ -88,6 +90,7 @@ impl Value {
                 *decimals,
             ),
             Value::Matrix(m) => matrix(*m),
+            Value::Color(c) => format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b),
         }
     }
 }

@@ -189,3 +189,99 @@ fn a_rotated_copy_turns_rigidly_and_a_flipped_logo_turns_instead_of_shrinking() 
         assert!(ratio > 0.9, "apple at t = {t}: area {ratio} of the blend");
     }
 }
+
+#[test]
+fn matched_paths_morph_as_one_crisp_shape() {
+    for name in ["circle-to-square", "heart-to-star", "ok-to-rating"] {
+        let dir = fixtures().join("icons").join(name);
+        let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
+        let (ds, dt) = (open(&s), open(&t));
+        let scene = |p: &Path| {
+            Scene::from_svg(
+                &p.display().to_string(),
+                &std::fs::read_to_string(p).unwrap(),
+                "controls",
+            )
+            .unwrap()
+        };
+        let (ss, ts) = (scene(&s), scene(&t));
+        let (c, report, _, _) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default()).unwrap();
+        assert!(
+            !report.morphing.is_empty(),
+            "{name}: no path morphs as one shape"
+        );
+        let m = &c.meshes;
+        let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+        let mut frame = FrameOptions::for_scene(&ss);
+        frame.size = (192, 192);
+        let plain = Morph::new(
+            c.meshes.clone(),
+            Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap(),
+            &ss,
+            &ts,
+            frame,
+        )
+        .unwrap();
+        let morph =
+            Morph::with_morphing_paths(c.meshes.clone(), interp, &ss, &ts, frame, report.morphing)
+                .unwrap();
+        // Translucent pixels: edges only when the shape morphs as one; a cross-fade leaves
+        // half-covered regions where the two shapes differ.
+        let translucent = |p: &tiny_skia::Pixmap| {
+            p.pixels()
+                .iter()
+                .filter(|q| q.alpha() > 30 && q.alpha() < 225)
+                .count() as f64
+                / p.pixels().len() as f64
+        };
+        let (one, blend) = (
+            translucent(&morph.pixmap_at(0.5).unwrap()),
+            translucent(&plain.pixmap_at(0.5).unwrap()),
+        );
+        eprintln!(
+            "{name}: translucent pixels at t = 0.5: {:.2} % as one shape, {:.2} % blended",
+            100.0 * one,
+            100.0 * blend
+        );
+        assert!(one < 0.02, "{name}: {one} translucent (blended: {blend})");
+        // The ends stay the exact inputs; the animated SVG animates the one path's outline
+        // and colour.
+        assert_eq!(
+            morph.pixmap_at(0.0).unwrap().data(),
+            plain.pixmap_at(0.0).unwrap().data()
+        );
+        let svg = morph
+            .animated_svg(&crmorph::export::Timeline {
+                frames: 12,
+                ..Default::default()
+            })
+            .unwrap();
+        usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
+        assert!(svg.contains("attributeName=\"d\""));
+        if name == "ok-to-rating" {
+            assert!(svg.contains("attributeName=\"fill\""), "colours animate");
+            // The disc's colour at t = 0.5 is the Oklab mix of green and red, not the sRGB
+            // average a cross-fade gives.
+            let fill = |sc: &Scene| match &sc.items()[0] {
+                crmorph::artwork::Item::Path(p) => match &p.fill.as_ref().unwrap().paint {
+                    crmorph::artwork::Paint::Color(c) => *c,
+                    _ => panic!("solid fill"),
+                },
+                _ => panic!("a path first"),
+            };
+            let (a, b) = (fill(&ss), fill(&ts));
+            let want = crmorph::color::mix(a, b, 0.5);
+            let px = morph.pixmap_at(0.5).unwrap();
+            let q = px.pixel(30, 96).unwrap().demultiply();
+            let got = [q.red(), q.green(), q.blue()];
+            let near = |x: u8, y: u8| x.abs_diff(y) <= 3;
+            eprintln!("disc colour {got:?}, Oklab mix {want:?}");
+            assert!(near(got[0], want.r) && near(got[1], want.g) && near(got[2], want.b));
+            let avg = [(a.r as u16 + b.r as u16) / 2, (a.g as u16 + b.g as u16) / 2];
+            assert!(
+                avg[1].abs_diff(got[1] as u16) > 5,
+                "distinguishable from the sRGB average"
+            );
+        }
+    }
+}
