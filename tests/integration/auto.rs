@@ -285,3 +285,52 @@ fn matched_paths_morph_as_one_crisp_shape() {
         }
     }
 }
+
+#[test]
+fn matched_contours_keep_their_vertex_correspondence() {
+    for (name, s, t) in icon_pairs() {
+        let (ds, dt) = (open(&s), open(&t));
+        let scene = |p: &Path| {
+            Scene::from_svg(
+                &p.display().to_string(),
+                &std::fs::read_to_string(p).unwrap(),
+                "controls",
+            )
+            .unwrap()
+        };
+        let (c, _, ds, dt) =
+            build_auto(&ds, &dt, &scene(&s), &scene(&t), &MorphOptions::default()).unwrap();
+        let m = &c.meshes;
+        let eps = 1e-6 * c.tolerances.diagonal;
+        for curve in m.curves.iter().filter(|k| k.name != "boundary") {
+            for (d, mesh) in [(&ds, &m.source), (&dt, &m.target)] {
+                let f = d
+                    .controls
+                    .features
+                    .iter()
+                    .find(|f| f.id == curve.name)
+                    .unwrap_or_else(|| panic!("{name}: {} has no feature", curve.name));
+                let n = f.points.len();
+                let edges = if f.closed { n } else { n - 1 };
+                for &v in &curve.vertices {
+                    let p = mesh[v as usize];
+                    let off = (0..edges)
+                        .map(|i| {
+                            crmorph::geometry::point_segment_distance(
+                                p,
+                                f.points[i],
+                                f.points[(i + 1) % n],
+                            )
+                            .0
+                        })
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        off <= eps,
+                        "{name}: {} vertex {v} is {off} off its contour",
+                        curve.name
+                    );
+                }
+            }
+        }
+    }
+}
