@@ -150,6 +150,15 @@ pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
     inside
 }
 
+/// Whether a polyline of at least two points ends within `within` of where it starts (so it is
+/// a closed curve whose first point is repeated at the end).
+pub fn ends_meet(points: &[Point], within: f64) -> bool {
+    match (points.first(), points.last()) {
+        (Some(a), Some(b)) if points.len() > 1 => a.distance(*b) <= within,
+        _ => false,
+    }
+}
+
 /// Distance from `p` to segment `ab`, and the parameter in [0, 1] of the closest point.
 pub fn point_segment_distance(p: Point, a: Point, b: Point) -> (f64, f64) {
     let ab = b - a;

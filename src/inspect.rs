@@ -59,6 +59,18 @@ fn fmt_xy(s: &mut String, p: Point) {
     let _ = write!(s, "{:.2} {:.2}", p.x, p.y);
 }
 
+/// Path data of separate segments, mapped into the panel.
+fn segments(p: &Panel, segs: impl Iterator<Item = (Point, Point)>) -> String {
+    let mut d = String::new();
+    for (a, b) in segs {
+        d.push('M');
+        fmt_xy(&mut d, p.map(a));
+        d.push('L');
+        fmt_xy(&mut d, p.map(b));
+    }
+    d
+}
+
 fn el<'a>(name: &'a str, attrs: &[(&'a str, &'a str)]) -> BytesStart<'a> {
     let mut e = BytesStart::new(name);
     for (k, v) in attrs {
@@ -84,13 +96,12 @@ fn panel(
     let m = &c.meshes;
     let p = Panel::new(points, index);
     // Mesh edges as one path.
-    let mut d = String::new();
-    for (a, b) in crate::mesh::edges(&m.triangles) {
-        d.push('M');
-        fmt_xy(&mut d, p.map(points[a as usize]));
-        d.push('L');
-        fmt_xy(&mut d, p.map(points[b as usize]));
-    }
+    let d = segments(
+        &p,
+        crate::mesh::edges(&m.triangles)
+            .into_iter()
+            .map(|(a, b)| (points[a as usize], points[b as usize])),
+    );
     let _ = w.write_event(Event::Empty(el(
         "path",
         &[
@@ -163,13 +174,12 @@ fn panel(
         }
     }
     if let Some((bones, joints)) = skeleton {
-        let mut d = String::new();
-        for &[a, b] in bones {
-            d.push('M');
-            fmt_xy(&mut d, p.map(joints[a as usize]));
-            d.push('L');
-            fmt_xy(&mut d, p.map(joints[b as usize]));
-        }
+        let d = segments(
+            &p,
+            bones
+                .iter()
+                .map(|&[a, b]| (joints[a as usize], joints[b as usize])),
+        );
         let _ = w.write_event(Event::Empty(el(
             "path",
             &[
@@ -264,7 +274,8 @@ pub fn inspect_svg_with_skeleton(c: &Compatible, skeleton: SkeletonPair<'_>) -> 
         skeleton.map(|(b, _, t)| (b, t)),
     );
     let _ = w.write_event(Event::End(BytesEnd::new("svg")));
-    let mut s = String::from_utf8(w.into_inner()).expect("writer produces UTF-8");
+    // The writer only ever receives `&str`, so its bytes are UTF-8.
+    let mut s = String::from_utf8_lossy(&w.into_inner()).into_owned();
     s.push('\n');
     s
 }

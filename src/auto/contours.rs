@@ -189,7 +189,7 @@ fn flatten(path: &kurbo::BezPath, tolerance: f64) -> Vec<(Vec<Point>, bool)> {
     // where they began instead of closing with `Z`.
     let meet = 4.0 * tolerance.max(1e-9);
     let mut finish = |cur: &mut Vec<Point>, closed: &mut bool| {
-        if cur.len() > 2 && cur[0].distance(*cur.last().unwrap()) <= meet {
+        if cur.len() > 2 && crate::geometry::ends_meet(cur, meet) {
             cur.pop();
             *closed = true;
         }

@@ -34,7 +34,7 @@ pub(crate) fn flatten(path: &BezPath, tolerance: f64, snap: f64) -> Vec<Subpath>
     };
     let finish = |sp: Option<Subpath>, out: &mut Vec<Subpath>| {
         if let Some(mut sp) = sp {
-            if sp.points.len() > 1 && sp.points[0].distance(*sp.points.last().unwrap()) <= snap {
+            if crate::geometry::ends_meet(&sp.points, snap) {
                 sp.points.pop();
                 sp.closed = true;
             }
@@ -92,9 +92,7 @@ pub(crate) fn flatten(path: &BezPath, tolerance: f64, snap: f64) -> Vec<Subpath>
             PathEl::ClosePath => {
                 if let Some(mut sp) = cur.take() {
                     sp.closed = true;
-                    if sp.points.len() > 1
-                        && sp.points[0].distance(*sp.points.last().unwrap()) <= snap
-                    {
+                    if crate::geometry::ends_meet(&sp.points, snap) {
                         sp.points.pop();
                     }
                     last = kurbo::Point::new(sp.points[0].x, sp.points[0].y);

@@ -186,31 +186,6 @@ fn attribute(
             let anim = animate(key, &kept, text, ctx, false);
             (stat, vec![anim])
         }
-        Value::Nums(_, format) => {
-            let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
-            if texts.iter().all(|t| *t == texts[0]) {
-                return (values[0].clone(), Vec::new());
-            }
-            let nums: Vec<Vec<f64>> = values
-                .iter()
-                .map(|v| match v {
-                    Value::Nums(n, _) => n.clone(),
-                    _ => Vec::new(),
-                })
-                .collect();
-            if nums.iter().any(|n| n.len() != nums[0].len()) {
-                return (values[0].clone(), vec![discrete(key, &texts, ctx)]);
-            }
-            let tol = match format {
-                NumFormat::Fixed(_) => ctx.tol,
-                NumFormat::Sig => UNIT_TOLERANCE,
-            };
-            let kept = keep(&nums, tol);
-            (
-                values[0].clone(),
-                vec![animate(key, &kept, |k| texts[k].clone(), ctx, false)],
-            )
-        }
         Value::Matrix(_) => {
             let ms: Vec<Affine> = values
                 .iter()
@@ -224,33 +199,43 @@ fn attribute(
             }
             (values[0].clone(), animate_transform(key, &ms, ctx))
         }
-        Value::Color(_) => {
+        _ => {
             let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
             if texts.iter().all(|t| *t == texts[0]) {
                 return (values[0].clone(), Vec::new());
             }
-            let nums: Vec<Vec<f64>> = values
-                .iter()
-                .map(|v| match v {
-                    Value::Color(c) => vec![c.r as f64, c.g as f64, c.b as f64],
-                    _ => vec![0.0; 3],
-                })
-                .collect();
-            // Browsers interpolate colours channel by channel in sRGB; keyframes within one
-            // level of that are dropped.
-            let kept = keep(&nums, 1.0);
-            (
-                values[0].clone(),
-                vec![animate(key, &kept, |k| texts[k].clone(), ctx, false)],
-            )
+            // Numbers and colours interpolate; text, or numbers whose count changes, switch.
+            let nums: Option<Vec<Vec<f64>>> = values.iter().map(|v| numbers(v)).collect();
+            let anim = match nums {
+                Some(nums) if nums.iter().all(|n| n.len() == nums[0].len()) => {
+                    let kept = keep(&nums, tolerance(v0, ctx));
+                    animate(key, &kept, |k| texts[k].clone(), ctx, false)
+                }
+                _ => discrete(key, &texts, ctx),
+            };
+            (values[0].clone(), vec![anim])
         }
-        Value::Text(_) => {
-            let texts: Vec<String> = values.iter().map(|v| v.text()).collect();
-            if texts.iter().all(|t| *t == texts[0]) {
-                return (values[0].clone(), Vec::new());
-            }
-            (values[0].clone(), vec![discrete(key, &texts, ctx)])
-        }
+    }
+}
+
+/// The numbers an attribute value interpolates, if it interpolates: numbers as they are, a
+/// colour as its sRGB channels (browsers interpolate colours channel by channel in sRGB).
+fn numbers(v: &Value) -> Option<Vec<f64>> {
+    match v {
+        Value::Nums(n, _) => Some(n.clone()),
+        Value::Color(c) => Some(vec![c.r as f64, c.g as f64, c.b as f64]),
+        _ => None,
+    }
+}
+
+/// How far linear interpolation may miss a dropped keyframe of this kind of value: the
+/// geometry tolerance for lengths, [`UNIT_TOLERANCE`] for scale-free numbers, one channel level
+/// for colours.
+fn tolerance(v: &Value, ctx: &Context) -> f64 {
+    match v {
+        Value::Nums(_, NumFormat::Fixed(_)) => ctx.tol,
+        Value::Color(_) => 1.0,
+        _ => UNIT_TOLERANCE,
     }
 }
 
@@ -317,12 +302,24 @@ fn animate(
     ctx: &Context,
     discrete: bool,
 ) -> Node {
-    let total = *kept.last().unwrap_or(&0) + 1;
-    let mut a: Vec<(&'static str, Value)> = vec![("attributeName", key.into())];
+    let mut head: Vec<(&'static str, Value)> = vec![("attributeName", key.into())];
     if discrete {
-        a.push(("calcMode", "discrete".into()));
+        head.push(("calcMode", "discrete".into()));
     }
-    a.push((
+    animation("animate", head, kept, text, ctx)
+}
+
+/// An animation element: `head` attributes, then the kept keyframes' `values` and `keyTimes`,
+/// then the file's timing.
+fn animation(
+    element: &str,
+    mut head: Vec<(&'static str, Value)>,
+    kept: &[usize],
+    text: impl Fn(usize) -> String,
+    ctx: &Context,
+) -> Node {
+    let total = *kept.last().unwrap_or(&0) + 1;
+    head.push((
         "values",
         kept.iter()
             .map(|&k| text(k))
@@ -330,9 +327,9 @@ fn animate(
             .join(";")
             .into(),
     ));
-    a.push(("keyTimes", key_times(kept, total, ctx).into()));
-    a.extend(ctx.timing.iter().cloned());
-    Node::new("animate", a)
+    head.push(("keyTimes", key_times(kept, total, ctx).into()));
+    head.extend(ctx.timing.iter().cloned());
+    Node::new(element, head)
 }
 
 /// A discrete `<animate>` switching at every change.
@@ -383,7 +380,6 @@ fn animate_transform(key: &str, ms: &[Affine], ctx: &Context) -> Vec<Node> {
             .map(|p| idx[..*dims].iter().map(|&j| p[j]).collect())
             .collect();
         let kept = keep(&nums, *tol);
-        let total = parts.len();
         let text = |k: usize| {
             nums[k]
                 .iter()
@@ -391,24 +387,14 @@ fn animate_transform(key: &str, ms: &[Affine], ctx: &Context) -> Vec<Node> {
                 .collect::<Vec<_>>()
                 .join(" ")
         };
-        let mut a: Vec<(&'static str, Value)> = vec![
+        let mut head: Vec<(&'static str, Value)> = vec![
             ("attributeName", key.to_string().into()),
             ("type", (*kind).into()),
         ];
         if i > 0 {
-            a.push(("additive", "sum".into()));
+            head.push(("additive", "sum".into()));
         }
-        a.push((
-            "values",
-            kept.iter()
-                .map(|&k| text(k))
-                .collect::<Vec<_>>()
-                .join(";")
-                .into(),
-        ));
-        a.push(("keyTimes", key_times(&kept, total, ctx).into()));
-        a.extend(ctx.timing.iter().cloned());
-        out.push(Node::new("animateTransform", a));
+        out.push(animation("animateTransform", head, &kept, text, ctx));
     }
     out
 }

@@ -181,16 +181,12 @@ impl Interpolator {
     /// Many frames in parallel (rayon), one workspace per worker: `frames[k]` is the frame at
     /// `ts[k]`.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
-        ts.par_iter()
-            .map_init(
-                || self.workspace(),
-                |ws, &t| {
-                    let mut out = vec![Point::ZERO; self.n];
-                    self.at(t, &mut out, ws);
-                    out
-                },
-            )
-            .collect()
+        parallel_frames(
+            ts,
+            self.n,
+            || self.workspace(),
+            |t, out, ws| self.at(t, out, ws),
+        )
     }
 
     /// Rotation angle (radians) of point `i`'s neighbourhood. Disc method: the consistent
@@ -204,6 +200,24 @@ impl Interpolator {
             Kind::Triangle(_, a) | Kind::Linear(_, _, a) => a[i],
         }
     }
+}
+
+/// Frames at every `t` of `ts` in parallel (rayon), each worker with its own workspace from
+/// `workspace`: `at(t, out, ws)` fills a frame of `n` points. Shared by every precompute-then-
+/// apply motion (the interpolator, skeleton control).
+pub(crate) fn parallel_frames<W>(
+    ts: &[f64],
+    n: usize,
+    workspace: impl Fn() -> W + Sync + Send,
+    at: impl Fn(f64, &mut [Point], &mut W) + Sync + Send,
+) -> Vec<Vec<Point>> {
+    ts.par_iter()
+        .map_init(&workspace, |ws, &t| {
+            let mut out = vec![Point::ZERO; n];
+            at(t, &mut out, ws);
+            out
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -207,6 +207,14 @@ mod tests {
         (pts, tris)
     }
 
+    /// The points of a `w × h` grid on its outer edge.
+    fn rim(pts: &[Point], w: f64, h: f64) -> Vec<Point> {
+        pts.iter()
+            .copied()
+            .filter(|p| p.x == 0.0 || p.x == w || p.y == 0.0 || p.y == h)
+            .collect()
+    }
+
     #[test]
     fn weights_are_one_at_their_joint_and_fall_off() {
         let (pts, tris) = grid(20, 4);
@@ -234,11 +242,7 @@ mod tests {
             assert!((sum - 1.0).abs() < 1e-9, "{sum}");
         }
         // Bound to the nearer bone.
-        let boundary: Vec<Point> = pts
-            .iter()
-            .copied()
-            .filter(|p| p.x == 0.0 || p.x == 20.0 || p.y == 0.0 || p.y == 4.0)
-            .collect();
+        let boundary = rim(&pts, 20.0, 4.0);
         let b = bind(&s, &pts, &tris, &boundary).unwrap();
         let main = |v: usize| b[v].iter().max_by(|x, y| x.1.total_cmp(&y.1)).unwrap().0;
         assert_eq!(main(at(4, 1)), 0);
@@ -269,11 +273,7 @@ mod tests {
             1e-6,
         )
         .unwrap();
-        let boundary: Vec<Point> = pts
-            .iter()
-            .copied()
-            .filter(|p| p.x == 0.0 || p.x == 30.0 || p.y == 0.0 || p.y == 4.0)
-            .collect();
+        let boundary = rim(&pts, 30.0, 4.0);
         let b = bind(&s, &pts, &tris, &boundary).unwrap();
         let at = |x: usize, y: usize| y * 31 + x;
         let total = |v: usize| b[v].iter().map(|e| e.1).sum::<f64>();

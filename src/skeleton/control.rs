@@ -25,7 +25,6 @@ use crate::error::{Error, Result};
 use crate::geometry::Point;
 use crate::mesh::{CompatibleMeshes, CurveKind};
 use crate::rigid::{DiscRigid, ExtraRow, FrameScratch};
-use rayon::prelude::*;
 
 /// Weight of a joint's row in eq. (2), relative to eq. (1)'s unit edge weights (a mesh vertex's
 /// own diagonal is about 12): strong enough that frames meet a pose to within a small fraction of
@@ -296,15 +295,11 @@ impl SkeletonControl {
 
     /// Many frames in parallel: `frames[k]` is the mesh at `ts[k]`.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
-        ts.par_iter()
-            .map_init(
-                || self.workspace(),
-                |ws, &t| {
-                    let mut out = vec![Point::ZERO; self.n];
-                    self.at(t, &mut out, ws);
-                    out
-                },
-            )
-            .collect()
+        crate::rigid::parallel_frames(
+            ts,
+            self.n,
+            || self.workspace(),
+            |t, out, ws| self.at(t, out, ws),
+        )
     }
 }

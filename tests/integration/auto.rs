@@ -14,7 +14,7 @@ use crmorph::mesh::count_inverted;
 use crmorph::render::FrameOptions;
 use crmorph::rigid::{Interpolator, Method};
 
-use crate::common::{fixtures, open};
+use crate::common::{fixtures, open, pixels_off_input};
 
 fn icon_pairs() -> Vec<(String, PathBuf, PathBuf)> {
     let mut v: Vec<_> = std::fs::read_dir(fixtures().join("icons"))
@@ -99,31 +99,9 @@ fn every_icon_pair_morphs_flip_free_with_exact_ends() {
         );
         // The ends render as the input files (within antialiasing).
         for (at, file) in [(0.0, &s), (1.0, &t)] {
-            let text = std::fs::read_to_string(file).unwrap();
-            let tree = usvg::Tree::from_str(&text, &usvg::Options::default()).unwrap();
-            let opts = *a.morph.frame_options();
-            let mut want = tiny_skia::Pixmap::new(opts.size.0, opts.size.1).unwrap();
-            let sx = opts.size.0 as f32 / tree.size().width();
-            let sy = opts.size.1 as f32 / tree.size().height();
-            resvg::render(
-                &tree,
-                tiny_skia::Transform::from_scale(sx, sy),
-                &mut want.as_mut(),
-            );
-            let got = a.morph.pixmap_at(at).unwrap();
-            let bad = want
-                .pixels()
-                .iter()
-                .zip(got.pixels())
-                .filter(|(p, q)| {
-                    p.alpha().abs_diff(q.alpha()) > 8
-                        || p.red().abs_diff(q.red()) > 8
-                        || p.green().abs_diff(q.green()) > 8
-                        || p.blue().abs_diff(q.blue()) > 8
-                })
-                .count();
+            let (bad, n) = pixels_off_input(file, &a.morph.pixmap_at(at).unwrap());
             assert!(
-                bad as f64 <= 0.005 * want.pixels().len() as f64,
+                bad as f64 <= 0.005 * n as f64,
                 "{name} at t = {at}: {bad} pixels differ from the input"
             );
         }

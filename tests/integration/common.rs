@@ -48,3 +48,35 @@ pub(crate) fn compatible(s: &Drawing, t: &Drawing, from_target: bool) -> Compati
     o.from_target = from_target;
     build(s, t, &o).unwrap_or_else(|e| panic!("{e}"))
 }
+
+/// Renders the SVG file `file` with resvg at the size of `got` and counts the pixels of `got`
+/// that differ from it by more than 8 in any channel: `(differing, total)`. How a frame at
+/// t = 0 or t = 1 compares with the input drawing itself.
+pub(crate) fn pixels_off_input(file: &Path, got: &tiny_skia::Pixmap) -> (usize, usize) {
+    let text = std::fs::read_to_string(file).unwrap();
+    let o = usvg::Options {
+        resources_dir: file.parent().map(Path::to_path_buf),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(&text, &o).unwrap();
+    let mut want = tiny_skia::Pixmap::new(got.width(), got.height()).unwrap();
+    let sx = got.width() as f32 / tree.size().width();
+    let sy = got.height() as f32 / tree.size().height();
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(sx, sy),
+        &mut want.as_mut(),
+    );
+    let bad = want
+        .pixels()
+        .iter()
+        .zip(got.pixels())
+        .filter(|(a, b)| {
+            a.red().abs_diff(b.red()) > 8
+                || a.green().abs_diff(b.green()) > 8
+                || a.blue().abs_diff(b.blue()) > 8
+                || a.alpha().abs_diff(b.alpha()) > 8
+        })
+        .count();
+    (bad, want.pixels().len())
+}

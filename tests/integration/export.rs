@@ -10,7 +10,7 @@ use crmorph::render::FrameOptions;
 use crmorph::rigid::{Interpolator, Method};
 use quick_xml::events::Event;
 
-use crate::common::{compatible, open, pairs};
+use crate::common::{compatible, open, pairs, pixels_off_input};
 
 /// The morph of a fixture pair at the source's own size.
 pub(crate) fn morph_of(s: &Path, t: &Path) -> Morph {
@@ -170,35 +170,8 @@ fn animated_svg_of_every_fixture_is_well_formed_smil() {
 fn ends_render_as_the_input_drawings() {
     for (name, s, t) in pairs() {
         let m = morph_of(&s, &t);
-        let opts = *m.frame_options();
         for (at, file) in [(0.0, &s), (1.0, &t)] {
-            let text = std::fs::read_to_string(file).unwrap();
-            let o = usvg::Options {
-                resources_dir: file.parent().map(Path::to_path_buf),
-                ..Default::default()
-            };
-            let tree = usvg::Tree::from_str(&text, &o).unwrap();
-            let mut want = tiny_skia::Pixmap::new(opts.size.0, opts.size.1).unwrap();
-            let sx = opts.size.0 as f32 / tree.size().width();
-            let sy = opts.size.1 as f32 / tree.size().height();
-            resvg::render(
-                &tree,
-                tiny_skia::Transform::from_scale(sx, sy),
-                &mut want.as_mut(),
-            );
-            let got = m.pixmap_at(at).unwrap();
-            let n = want.pixels().len();
-            let bad = want
-                .pixels()
-                .iter()
-                .zip(got.pixels())
-                .filter(|(a, b)| {
-                    a.red().abs_diff(b.red()) > 8
-                        || a.green().abs_diff(b.green()) > 8
-                        || a.blue().abs_diff(b.blue()) > 8
-                        || a.alpha().abs_diff(b.alpha()) > 8
-                })
-                .count();
+            let (bad, n) = pixels_off_input(file, &m.pixmap_at(at).unwrap());
             assert!(
                 bad as f64 <= 0.002 * n as f64,
                 "{name} at t = {at}: {bad} of {n} pixels differ from the input drawing"

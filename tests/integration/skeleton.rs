@@ -46,6 +46,12 @@ fn swing(skeleton: &Skeleton, pose: &[Point], id: &str, which: usize, angle: f64
     out
 }
 
+/// Skeleton control of `d` with one pose, `joints` at `t`.
+fn posed(d: &Dancer, t: f64, joints: Vec<Point>) -> SkeletonControl {
+    SkeletonControl::new(&d.meshes, d.skeleton.clone(), &[Pose { t, joints }])
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
 fn max_distance(a: &[Point], b: &[Point]) -> f64 {
     a.iter()
         .zip(b)
@@ -81,15 +87,7 @@ fn a_pose_is_met_at_its_frame_and_the_ends_stay_exact() {
         -35f64.to_radians(),
     );
     let pose = swing(&d.skeleton, &pose, "skeleton-arms", 0, 30f64.to_radians());
-    let control = SkeletonControl::new(
-        m,
-        d.skeleton.clone(),
-        &[Pose {
-            t: tc,
-            joints: pose.clone(),
-        }],
-    )
-    .unwrap();
+    let control = posed(&d, tc, pose.clone());
     assert!(control.is_active());
     let at_tc = control.at_vec(tc);
     let miss = max_distance(&control.derived(&at_tc), &pose);
@@ -200,15 +198,7 @@ fn a_lower_body_skeleton_leaves_the_upper_body_alone() {
         1,
         -30f64.to_radians(),
     );
-    let control = SkeletonControl::new(
-        m,
-        d.skeleton.clone(),
-        &[Pose {
-            t: tc,
-            joints: pose,
-        }],
-    )
-    .unwrap();
+    let control = posed(&d, tc, pose);
     // Vertices above the chest (y < 140 in the source: head and arms) are far from the hip and
     // legs.
     let upper: Vec<usize> = (0..m.source.len())
@@ -251,15 +241,7 @@ fn the_bundled_poses_morph_without_inverted_triangles() {
             .skeleton
             .pose_from_chains(&pose_drawing.file, &pose_drawing.controls.skeleton)
             .unwrap_or_else(|e| panic!("{e}"));
-        let control = SkeletonControl::new(
-            m,
-            d.skeleton.clone(),
-            &[Pose {
-                t: 0.5,
-                joints: joints.clone(),
-            }],
-        )
-        .unwrap();
+        let control = posed(&d, 0.5, joints.clone());
         let miss = max_distance(&control.derived(&control.at_vec(0.5)), &joints);
         assert!(
             miss <= 0.01 * d.diagonal,
