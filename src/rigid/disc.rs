@@ -27,6 +27,21 @@
 //! neighbouring rotations differ by less than π — the case §4.1.1 is designed for — both graphs
 //! give the same angles; `reduced_rotation_graph_matches_the_full_graph` checks it on bends and
 //! turns past 180°.
+//!
+//! ## Disc size follows the similarity curve (a deviation from the paper)
+//!
+//! Interpolating each edge's scale on its own, `1 − t + t·s_ij`, swells a disc that stretches
+//! unevenly: stretched ×2 one way and ×½ the other, it has area `1.5 × 0.75 = 1.125` at t = ½
+//! where both end areas are 1 (the leaf → butterfly fixture swells 12.8 % this way). So every
+//! disc's intermediate vectors `l_ij(t)` are scaled by one factor `c_i(t)` that gives the disc the
+//! size a similarity would: with the disc's size `σ_i(t) = det(Σ_j l_ij l_ijᵀ)^¼` (for vectors
+//! mapped by a linear map `A`, `σ` grows by `|det A|^½`, a length), `c_i(t) = ((1 − t)·σ_i(0) +
+//! t·σ_i(1)) / σ_i(t)`. For a similarity every `c_i` is 1 — frames stay exact similarities with
+//! the scale linear in t — and at t = 0 and t = 1 it is 1, so the ends stay exact. It needs no
+//! triangles (barycenter discs work too), costs one more pass over the edges per frame, and, as
+//! a per-disc uniform scale, cannot fold anything. An edge stands for both of its discs, so its
+//! vector takes the mean of their factors. Discs whose neighbours are collinear have no size
+//! and keep factor 1.
 
 use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
@@ -218,6 +233,9 @@ pub(crate) struct DiscRigid {
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
     rotation: Vec<f64>,
+    /// Each disc's size `σ_i` at t = 0 and t = 1 (module docs); NaN for a disc without size.
+    size_source: Vec<f64>,
+    size_target: Vec<f64>,
 }
 
 /// Per-thread scratch for [`DiscRigid::at`] and the triangle baseline.
@@ -229,6 +247,10 @@ pub(crate) struct FrameScratch {
     pub(crate) angle: Vec<f64>,
     pub(crate) sin: Vec<f64>,
     pub(crate) cos: Vec<f64>,
+    /// Per-term intermediate vectors `l_ij(t)` (disc method only).
+    local: Vec<Point>,
+    /// Per-point second moments `Σ_j l lᵀ` as `[xx, xy, yy]`, then (in `[0]`) the size factor.
+    moment: Vec<[f64; 3]>,
 }
 
 impl FrameScratch {
@@ -240,6 +262,8 @@ impl FrameScratch {
             angle: vec![0.0; terms],
             sin: vec![0.0; terms],
             cos: vec![0.0; terms],
+            local: Vec::new(),
+            moment: Vec::new(),
         }
     }
 
@@ -289,7 +313,7 @@ impl DiscRigid {
             builder.add_extra_row(&row.coeffs, row.weight);
         }
         let system = builder.factor()?;
-        let terms = local
+        let terms: Vec<EdgeTerm> = local
             .edges
             .iter()
             .enumerate()
@@ -324,6 +348,18 @@ impl DiscRigid {
                 }
             })
             .collect();
+        let mut moment = Vec::new();
+        let source_vectors: Vec<Point> = terms.iter().map(|e| e.wd).collect();
+        let size_source = disc_sizes(&terms, &source_vectors, n, &mut moment);
+        let target_vectors: Vec<Point> = terms
+            .iter()
+            .zip(&alpha)
+            .map(|(e, &a)| {
+                let (sn, cs) = a.sin_cos();
+                Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * (1.0 + e.s1)
+            })
+            .collect();
+        let size_target = disc_sizes(&terms, &target_vectors, n, &mut moment);
         let count = system.component_count();
         Ok(DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
@@ -333,6 +369,8 @@ impl DiscRigid {
             extra,
             system,
             rotation,
+            size_source,
+            size_target,
         })
     }
 
@@ -347,7 +385,10 @@ impl DiscRigid {
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
+        let mut ws = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
+        ws.local = vec![Point::ZERO; self.terms.len()];
+        ws.moment = vec![[0.0; 3]; self.size_source.len()];
+        ws
     }
 
     /// Points at `t` into `out` (eq. 1), without allocating.
@@ -381,13 +422,39 @@ impl DiscRigid {
         ws: &mut FrameScratch,
     ) {
         ws.rotations(t, &self.alpha);
+        for (((l, e), &sn), &cs) in ws
+            .local
+            .iter_mut()
+            .zip(&self.terms)
+            .zip(&ws.sin)
+            .zip(&ws.cos)
+        {
+            let f = 1.0 + t * e.s1;
+            *l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
+        }
+        // The disc size factors c_i(t) (module docs), kept in `moment[i][0]`.
+        accumulate_moments(&self.terms, &ws.local, &mut ws.moment);
+        for ((m, &a), &b) in ws
+            .moment
+            .iter_mut()
+            .zip(&self.size_source)
+            .zip(&self.size_target)
+        {
+            let now = size(*m);
+            let want = (1.0 - t) * a + t * b;
+            m[0] = if want.is_finite() && now.is_finite() && now > 0.0 {
+                want / now
+            } else {
+                1.0
+            };
+        }
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
         let stride = rhs.len() / 2;
         let (rx, ry) = rhs.split_at_mut(stride);
-        for ((e, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
-            let f = 1.0 + t * e.s1;
-            let mut l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
+        for (e, &l) in self.terms.iter().zip(&ws.local) {
+            let c = 0.5 * (ws.moment[e.vi as usize][0] + ws.moment[e.vj as usize][0]);
+            let mut l = l * c;
             if let Some(a) = adjust {
                 let m = (a[e.vi as usize] + a[e.vj as usize]) * 0.5;
                 l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
@@ -412,6 +479,44 @@ impl DiscRigid {
         );
         self.system.solve(&mut ws.solve, &ws.centroids, out);
     }
+}
+
+/// `moment[i] = Σ l lᵀ` over the terms of point `i`'s disc, as `[xx, xy, yy]`.
+fn accumulate_moments(terms: &[EdgeTerm], local: &[Point], moment: &mut [[f64; 3]]) {
+    moment.fill([0.0; 3]);
+    for (e, l) in terms.iter().zip(local) {
+        let m = [l.x * l.x, l.x * l.y, l.y * l.y];
+        for v in [e.vi, e.vj] {
+            let acc = &mut moment[v as usize];
+            acc[0] += m[0];
+            acc[1] += m[1];
+            acc[2] += m[2];
+        }
+    }
+}
+
+/// A disc's size `det(M)^¼` from its second moment `M` (module docs); NaN when its vectors are
+/// (numerically) collinear, so it has no size to keep.
+fn size(m: [f64; 3]) -> f64 {
+    let det = m[0] * m[2] - m[1] * m[1];
+    let trace = m[0] + m[2];
+    if det > 1e-12 * trace * trace {
+        det.sqrt().sqrt()
+    } else {
+        f64::NAN
+    }
+}
+
+/// Every disc's size for the per-term vectors `local` (`moment` is scratch).
+fn disc_sizes(
+    terms: &[EdgeTerm],
+    local: &[Point],
+    n: usize,
+    moment: &mut Vec<[f64; 3]>,
+) -> Vec<f64> {
+    moment.resize(n, [0.0; 3]);
+    accumulate_moments(terms, local, moment);
+    moment.iter().map(|&m| size(m)).collect()
 }
 
 #[cfg(test)]

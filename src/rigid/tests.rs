@@ -292,6 +292,33 @@ fn thin_triangles_make_the_triangle_baseline_spike_not_the_disc_method() {
     assert!(tri > 1.05, "triangle baseline should spike: {tri}");
 }
 
+/// A stretch ×2 across and ×½ along, turned by 2.5 rad: the end areas are equal, so the disc
+/// size rule (disc.rs) keeps the area at the blend; per-edge scales alone give 1.5 × 0.75 =
+/// 1.125 at t = ½. The stretch direction's length still interpolates linearly in between.
+#[test]
+fn uneven_stretch_keeps_the_area_of_the_blend() {
+    let (src, tris) = grid(11, 9, 1.0);
+    let tgt: Vec<Point> = src
+        .iter()
+        .map(|p| rot(Point::new(2.0 * p.x, 0.5 * p.y), 2.5))
+        .collect();
+    let it = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+    let a0 = quality::area(&tris, &src);
+    for k in 0..=10 {
+        let t = k as f64 / 10.0;
+        let frame = it.at_vec(t);
+        let r = quality::area(&tris, &frame) / a0;
+        assert!((r - 1.0).abs() < 0.01, "t={t}: area ratio {r}");
+        assert_eq!(quality::inverted_triangles(&tris, &frame), 0);
+    }
+    // The bottom row's length (10 at t = 0, 20 at t = 1) grows monotonically.
+    let width = |f: &[Point]| f[0].distance(f[10]);
+    let w: Vec<f64> = (0..=10)
+        .map(|k| width(&it.at_vec(k as f64 / 10.0)))
+        .collect();
+    assert!(w.windows(2).all(|p| p[1] > p[0]), "{w:?}");
+}
+
 #[test]
 fn disconnected_parts_each_move_rigidly() {
     let (a, ta) = grid(5, 5, 1.0);

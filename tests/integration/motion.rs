@@ -40,10 +40,11 @@ fn frames_are_exact_at_the_ends_and_never_inverted() {
 
 #[test]
 fn a_half_turn_keeps_its_area_where_linear_interpolation_collapses() {
-    // leaf → butterfly turns by about 180°. The issue asks for the area to stay within 10% of
-    // the linear blend of the end areas; measured (examples/area.rs) it never drops below the
-    // blend and rises to +12.8% at t = ½ (+10.8% mapped from the butterfly), so this holds the
-    // measured behaviour: no collapse, at most 15% above, never below by more than 1%.
+    // leaf → butterfly turns by about 180°: the area stays within 10% of the linear blend of
+    // the end areas at every frame (the issue's bound). Measured with `cargo run --release
+    // --example area`: 1.000–1.011 of the blend from the leaf, 0.994–1.001 from the butterfly
+    // (the paper's per-edge scales alone swell it to 1.128; see the disc size rule in
+    // src/rigid/disc.rs). Linear interpolation collapses to 0.03.
     use crmorph::quality::area;
     let d = crate::common::fixtures().join("leaf-to-butterfly");
     let (s, t) = (open(&d.join("source.svg")), open(&d.join("target.svg")));
@@ -58,7 +59,7 @@ fn a_half_turn_keeps_its_area_where_linear_interpolation_collapses() {
             let blend = (1.0 - t) * a0 + t * a1;
             let r = area(&m.triangles, &disc.at_vec(t)) / blend;
             assert!(
-                (0.99..=1.15).contains(&r),
+                (0.9..=1.1).contains(&r),
                 "disc area at t={t} is {r:.3} of the blend"
             );
         }
