@@ -233,7 +233,7 @@ pub(crate) struct DiscRigid {
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
     rotation: Vec<f64>,
-    /// Each disc's size `σ_i` at t = 0 and t = 1 (module docs); NaN for a disc without size.
+    /// Each disc's size `σ_i` at t = 0 and t = 1 (module docs); 0 for a disc without size.
     size_source: Vec<f64>,
     size_target: Vec<f64>,
 }
@@ -249,8 +249,10 @@ pub(crate) struct FrameScratch {
     pub(crate) cos: Vec<f64>,
     /// Per-term intermediate vectors `l_ij(t)` (disc method only).
     local: Vec<Point>,
-    /// Per-point second moments `Σ_j l lᵀ` as `[xx, xy, yy]`, then (in `[0]`) the size factor.
+    /// Per-point second moments `Σ_j l lᵀ` as `[xx, xy, yy]`.
     moment: Vec<[f64; 3]>,
+    /// Per-point disc size factors `c_i(t)`.
+    factor: Vec<f64>,
 }
 
 impl FrameScratch {
@@ -264,6 +266,7 @@ impl FrameScratch {
             cos: vec![0.0; terms],
             local: Vec::new(),
             moment: Vec::new(),
+            factor: Vec::new(),
         }
     }
 
@@ -388,6 +391,7 @@ impl DiscRigid {
         let mut ws = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
         ws.local = vec![Point::ZERO; self.terms.len()];
         ws.moment = vec![[0.0; 3]; self.size_source.len()];
+        ws.factor = vec![1.0; self.size_source.len()];
         ws
     }
 
@@ -422,6 +426,9 @@ impl DiscRigid {
         ws: &mut FrameScratch,
     ) {
         ws.rotations(t, &self.alpha);
+        // The intermediate vectors and each disc's second moment in one pass, then the disc
+        // size factors c_i(t) (module docs).
+        ws.moment.fill([0.0; 3]);
         for (((l, e), &sn), &cs) in ws
             .local
             .iter_mut()
@@ -431,19 +438,21 @@ impl DiscRigid {
         {
             let f = 1.0 + t * e.s1;
             *l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
+            add_moment(&mut ws.moment, e, *l);
         }
-        // The disc size factors c_i(t) (module docs), kept in `moment[i][0]`.
-        accumulate_moments(&self.terms, &ws.local, &mut ws.moment);
-        for ((m, &a), &b) in ws
-            .moment
+        for (((c, m), &a), &b) in ws
+            .factor
             .iter_mut()
+            .zip(&ws.moment)
             .zip(&self.size_source)
             .zip(&self.size_target)
         {
-            let now = size(*m);
+            // Branch-free so that it vectorizes: sizeless discs (size 0) keep factor 1.
+            let det = m[0] * m[2] - m[1] * m[1];
             let want = (1.0 - t) * a + t * b;
-            m[0] = if want.is_finite() && now.is_finite() && now > 0.0 {
-                want / now
+            let ratio = want / det.max(f64::MIN_POSITIVE).sqrt().sqrt();
+            *c = if a > 0.0 && b > 0.0 && det > 0.0 {
+                ratio
             } else {
                 1.0
             };
@@ -453,7 +462,7 @@ impl DiscRigid {
         let stride = rhs.len() / 2;
         let (rx, ry) = rhs.split_at_mut(stride);
         for (e, &l) in self.terms.iter().zip(&ws.local) {
-            let c = 0.5 * (ws.moment[e.vi as usize][0] + ws.moment[e.vj as usize][0]);
+            let c = 0.5 * (ws.factor[e.vi as usize] + ws.factor[e.vj as usize]);
             let mut l = l * c;
             if let Some(a) = adjust {
                 let m = (a[e.vi as usize] + a[e.vj as usize]) * 0.5;
@@ -481,21 +490,19 @@ impl DiscRigid {
     }
 }
 
-/// `moment[i] = Σ l lᵀ` over the terms of point `i`'s disc, as `[xx, xy, yy]`.
-fn accumulate_moments(terms: &[EdgeTerm], local: &[Point], moment: &mut [[f64; 3]]) {
-    moment.fill([0.0; 3]);
-    for (e, l) in terms.iter().zip(local) {
-        let m = [l.x * l.x, l.x * l.y, l.y * l.y];
-        for v in [e.vi, e.vj] {
-            let acc = &mut moment[v as usize];
-            acc[0] += m[0];
-            acc[1] += m[1];
-            acc[2] += m[2];
-        }
+/// Adds `l lᵀ` to the second moments of both end points of `e`, as `[xx, xy, yy]`.
+#[inline]
+fn add_moment(moment: &mut [[f64; 3]], e: &EdgeTerm, l: Point) {
+    let m = [l.x * l.x, l.x * l.y, l.y * l.y];
+    for v in [e.vi, e.vj] {
+        let acc = &mut moment[v as usize];
+        acc[0] += m[0];
+        acc[1] += m[1];
+        acc[2] += m[2];
     }
 }
 
-/// A disc's size `det(M)^¼` from its second moment `M` (module docs); NaN when its vectors are
+/// A disc's size `det(M)^¼` from its second moment `M` (module docs); 0 when its vectors are
 /// (numerically) collinear, so it has no size to keep.
 fn size(m: [f64; 3]) -> f64 {
     let det = m[0] * m[2] - m[1] * m[1];
@@ -503,7 +510,7 @@ fn size(m: [f64; 3]) -> f64 {
     if det > 1e-12 * trace * trace {
         det.sqrt().sqrt()
     } else {
-        f64::NAN
+        0.0
     }
 }
 
@@ -514,8 +521,11 @@ fn disc_sizes(
     n: usize,
     moment: &mut Vec<[f64; 3]>,
 ) -> Vec<f64> {
+    moment.clear();
     moment.resize(n, [0.0; 3]);
-    accumulate_moments(terms, local, moment);
+    for (e, &l) in terms.iter().zip(local) {
+        add_moment(moment, e, l);
+    }
     moment.iter().map(|&m| size(m)).collect()
 }
 
