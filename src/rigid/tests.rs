@@ -468,3 +468,64 @@ proptest! {
         }
     }
 }
+
+/// The needle column of the test above made ever thinner, down to a width of 1e-10 of the grid
+/// spacing — what nearly collinear curve vertices give a triangulation without optimization
+/// (Fig. 13). The triangle baseline inverts every triangle's edge matrix, so its system's
+/// condition grows like 1/width²: measured, its t = 0 frame is off by 1.3e-8 at width 1e-3,
+/// 8.9e-3 at 1e-6 and 0.69 (5 % of the diagonal) at 1e-7, and it cannot be factored at 1e-8.
+/// The disc method never looks at triangles: exact ends (≤ 7e-14), no inverted triangle and no
+/// spike on well-shaped triangles at every width.
+#[test]
+fn the_disc_method_is_insensitive_to_triangle_quality() {
+    let mut triangle_errors = Vec::new();
+    for exponent in [3, 5, 7, 8, 10] {
+        let width = 10f64.powi(-exponent);
+        let (mut src, tris) = grid(13, 7, 1.0);
+        let mut pre = src.clone();
+        for j in 0..7 {
+            let k = j * 13 + 6;
+            src[k].x = 7.0 - width;
+            pre[k].x = 7.0 - 0.02;
+            pre[k].y += 0.3 * (j as f64 - 3.0);
+        }
+        let tgt = bend(&pre, 12.0, 1.2, 0.5);
+        let tol = 1e-9 * diag(&src);
+        let end_error = |it: &Interpolator| {
+            [(0.0, &src), (1.0, &tgt)]
+                .iter()
+                .map(|(t, want)| {
+                    it.at_vec(*t)
+                        .iter()
+                        .zip(want.iter())
+                        .map(|(a, b)| a.distance(*b))
+                        .fold(0.0, f64::max)
+                })
+                .fold(0.0, f64::max)
+        };
+        let disc = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+        assert!(end_error(&disc) < tol, "width {width}: disc ends");
+        let spike = spike_on_well_shaped_triangles(Method::Disc, &src, &tgt, &tris);
+        assert!(spike <= 1.0, "width {width}: disc spikes {spike}");
+        triangle_errors.push(
+            match Interpolator::new(Method::Triangle, &src, &tgt, &tris) {
+                Ok(it) => end_error(&it),
+                Err(e) => {
+                    assert!(
+                        e.is_input() && e.to_string().contains("--method disc"),
+                        "{e}"
+                    );
+                    f64::INFINITY
+                }
+            },
+        );
+    }
+    // The baseline is exact only for reasonable triangles, and falls apart on needles.
+    assert!(triangle_errors[0] < 1e-6 * diag(&grid(13, 7, 1.0).0));
+    assert!(
+        triangle_errors[2..]
+            .iter()
+            .all(|&e| e > 1e-3 * diag(&grid(13, 7, 1.0).0)),
+        "{triangle_errors:?}"
+    );
+}
