@@ -28,21 +28,11 @@
 //! give the same angles; `reduced_rotation_graph_matches_the_full_graph` checks it on bends and
 //! turns past 180°.
 //!
-//! ## Disc size follows the similarity curve (a deviation from the paper)
-//!
-//! Interpolating each edge's scale on its own, `1 − t + t·s_ij`, swells a disc that stretches
-//! unevenly: stretched ×2 one way and ×½ the other, it has area `1.5 × 0.75 = 1.125` at t = ½
-//! where both end areas are 1 (the leaf → butterfly fixture swells 12.8 % this way). So every
-//! disc's intermediate vectors `l_ij(t)` are scaled by one factor `c_i(t)` that gives the disc the
-//! size a similarity would: with the disc's size `σ_i(t) = det(Σ_j l_ij l_ijᵀ)^¼` (for vectors
-//! mapped by a linear map `A`, `σ` grows by `|det A|^½`, a length), `c_i(t) = ((1 − t)·σ_i(0) +
-//! t·σ_i(1)) / σ_i(t)`. For a similarity every `c_i` is 1 — frames stay exact similarities with
-//! the scale linear in t — and at t = 0 and t = 1 it is 1, so the ends stay exact. It needs no
-//! triangles (barycenter discs work too), costs one more pass over the edges per frame, and, as
-//! a per-disc uniform scale, cannot fold anything. An edge stands for both of its discs, so its
-//! vector takes the mean of their factors. Discs whose neighbours are collinear have no size
-//! and keep factor 1.
+//! On triangle meshes the frames then get the area rule (`area.rs`, a documented deviation):
+//! each connected part is scaled uniformly so that its area does not swell where eq. (1)'s
+//! per-edge scales stretch it unevenly.
 
+use super::area::AreaRule;
 use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
 };
@@ -233,9 +223,8 @@ pub(crate) struct DiscRigid {
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
     rotation: Vec<f64>,
-    /// Each disc's size `σ_i` at t = 0 and t = 1 (module docs); 0 for a disc without size.
-    size_source: Vec<f64>,
-    size_target: Vec<f64>,
+    /// The area rule (`area.rs`), for frames of a triangle mesh without extra rows.
+    area: Option<AreaRule>,
 }
 
 /// Per-thread scratch for [`DiscRigid::at`] and the triangle baseline.
@@ -247,12 +236,8 @@ pub(crate) struct FrameScratch {
     pub(crate) angle: Vec<f64>,
     pub(crate) sin: Vec<f64>,
     pub(crate) cos: Vec<f64>,
-    /// Per-term intermediate vectors `l_ij(t)` (disc method only).
-    local: Vec<Point>,
-    /// Per-point second moments `Σ_j l lᵀ` as `[xx, xy, yy]`.
-    moment: Vec<[f64; 3]>,
-    /// Per-point disc size factors `c_i(t)`.
-    factor: Vec<f64>,
+    /// Per-component areas for the area rule.
+    areas: Vec<f64>,
 }
 
 impl FrameScratch {
@@ -264,9 +249,7 @@ impl FrameScratch {
             angle: vec![0.0; terms],
             sin: vec![0.0; terms],
             cos: vec![0.0; terms],
-            local: Vec::new(),
-            moment: Vec::new(),
-            factor: Vec::new(),
+            areas: vec![0.0; components],
         }
     }
 
@@ -284,6 +267,27 @@ impl DiscRigid {
     /// transformations, consistent rotation (§4.1.1), normal equations factored once.
     pub(crate) fn new(source: &[Point], target: &[Point], discs: &[Vec<u32>]) -> Result<Self> {
         Self::with_extra_rows(source, target, discs, Vec::new())
+    }
+
+    /// [`DiscRigid::new`] on a triangle mesh (`discs` its one-rings) with the area rule
+    /// (`area.rs`): every connected part's area follows the similarity curve between its end
+    /// areas instead of swelling where it stretches unevenly.
+    pub(crate) fn with_area_rule(
+        source: &[Point],
+        target: &[Point],
+        discs: &[Vec<u32>],
+        triangles: &[[u32; 3]],
+    ) -> Result<Self> {
+        let mut d = Self::new(source, target, discs)?;
+        let count = d.system.component_count();
+        d.area = Some(AreaRule::new(
+            triangles,
+            d.system.components(),
+            count,
+            source,
+            target,
+        ));
+        Ok(d)
     }
 
     /// [`DiscRigid::new`] with constant extra rows added to the matrix before it is factored
@@ -316,7 +320,7 @@ impl DiscRigid {
             builder.add_extra_row(&row.coeffs, row.weight);
         }
         let system = builder.factor()?;
-        let terms: Vec<EdgeTerm> = local
+        let terms = local
             .edges
             .iter()
             .enumerate()
@@ -351,18 +355,6 @@ impl DiscRigid {
                 }
             })
             .collect();
-        let mut moment = Vec::new();
-        let source_vectors: Vec<Point> = terms.iter().map(|e| e.wd).collect();
-        let size_source = disc_sizes(&terms, &source_vectors, n, &mut moment);
-        let target_vectors: Vec<Point> = terms
-            .iter()
-            .zip(&alpha)
-            .map(|(e, &a)| {
-                let (sn, cs) = a.sin_cos();
-                Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * (1.0 + e.s1)
-            })
-            .collect();
-        let size_target = disc_sizes(&terms, &target_vectors, n, &mut moment);
         let count = system.component_count();
         Ok(DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
@@ -372,8 +364,7 @@ impl DiscRigid {
             extra,
             system,
             rotation,
-            size_source,
-            size_target,
+            area: None,
         })
     }
 
@@ -388,11 +379,7 @@ impl DiscRigid {
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        let mut ws = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
-        ws.local = vec![Point::ZERO; self.terms.len()];
-        ws.moment = vec![[0.0; 3]; self.size_source.len()];
-        ws.factor = vec![1.0; self.size_source.len()];
-        ws
+        FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
     }
 
     /// Points at `t` into `out` (eq. 1), without allocating.
@@ -426,44 +413,13 @@ impl DiscRigid {
         ws: &mut FrameScratch,
     ) {
         ws.rotations(t, &self.alpha);
-        // The intermediate vectors and each disc's second moment in one pass, then the disc
-        // size factors c_i(t) (module docs).
-        ws.moment.fill([0.0; 3]);
-        for (((l, e), &sn), &cs) in ws
-            .local
-            .iter_mut()
-            .zip(&self.terms)
-            .zip(&ws.sin)
-            .zip(&ws.cos)
-        {
-            let f = 1.0 + t * e.s1;
-            *l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
-            add_moment(&mut ws.moment, e, *l);
-        }
-        for (((c, m), &a), &b) in ws
-            .factor
-            .iter_mut()
-            .zip(&ws.moment)
-            .zip(&self.size_source)
-            .zip(&self.size_target)
-        {
-            // Branch-free so that it vectorizes: sizeless discs (size 0) keep factor 1.
-            let det = m[0] * m[2] - m[1] * m[1];
-            let want = (1.0 - t) * a + t * b;
-            let ratio = want / det.max(f64::MIN_POSITIVE).sqrt().sqrt();
-            *c = if a > 0.0 && b > 0.0 && det > 0.0 {
-                ratio
-            } else {
-                1.0
-            };
-        }
         let rhs = &mut ws.solve.rhs;
         rhs.fill(0.0);
         let stride = rhs.len() / 2;
         let (rx, ry) = rhs.split_at_mut(stride);
-        for (e, &l) in self.terms.iter().zip(&ws.local) {
-            let c = 0.5 * (ws.factor[e.vi as usize] + ws.factor[e.vj as usize]);
-            let mut l = l * c;
+        for ((e, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
+            let f = 1.0 + t * e.s1;
+            let mut l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
             if let Some(a) = adjust {
                 let m = (a[e.vi as usize] + a[e.vj as usize]) * 0.5;
                 l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
@@ -487,46 +443,16 @@ impl DiscRigid {
             t,
         );
         self.system.solve(&mut ws.solve, &ws.centroids, out);
+        if let Some(rule) = &self.area {
+            rule.apply(
+                t,
+                self.system.components(),
+                &ws.centroids,
+                out,
+                &mut ws.areas,
+            );
+        }
     }
-}
-
-/// Adds `l lᵀ` to the second moments of both end points of `e`, as `[xx, xy, yy]`.
-#[inline]
-fn add_moment(moment: &mut [[f64; 3]], e: &EdgeTerm, l: Point) {
-    let m = [l.x * l.x, l.x * l.y, l.y * l.y];
-    for v in [e.vi, e.vj] {
-        let acc = &mut moment[v as usize];
-        acc[0] += m[0];
-        acc[1] += m[1];
-        acc[2] += m[2];
-    }
-}
-
-/// A disc's size `det(M)^¼` from its second moment `M` (module docs); 0 when its vectors are
-/// (numerically) collinear, so it has no size to keep.
-fn size(m: [f64; 3]) -> f64 {
-    let det = m[0] * m[2] - m[1] * m[1];
-    let trace = m[0] + m[2];
-    if det > 1e-12 * trace * trace {
-        det.sqrt().sqrt()
-    } else {
-        0.0
-    }
-}
-
-/// Every disc's size for the per-term vectors `local` (`moment` is scratch).
-fn disc_sizes(
-    terms: &[EdgeTerm],
-    local: &[Point],
-    n: usize,
-    moment: &mut Vec<[f64; 3]>,
-) -> Vec<f64> {
-    moment.clear();
-    moment.resize(n, [0.0; 3]);
-    for (e, &l) in terms.iter().zip(local) {
-        add_moment(moment, e, l);
-    }
-    moment.iter().map(|&m| size(m)).collect()
 }
 
 #[cfg(test)]

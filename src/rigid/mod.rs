@@ -6,7 +6,9 @@
 //!
 //! - [`Method::Disc`] (the paper's method): per-disc local rotations and scales
 //!   (`disc.rs`), made globally consistent for turns beyond 180° (`rotation.rs`, §4.1.1), assembled
-//!   by the least squares of eq. (1) whose matrix is factored once (`assembly.rs`).
+//!   by the least squares of eq. (1) whose matrix is factored once (`assembly.rs`); on triangle
+//!   meshes each part's area then follows the similarity curve between its end areas
+//!   (`area.rs`, a deviation that removes the swell of unevenly stretched regions).
 //! - [`Method::Triangle`]: triangle-to-triangle as-rigid-as-possible interpolation
 //!   (`triangle.rs`), the classical baseline of Fig. 13.
 //! - [`Method::Linear`]: straight-line vertex paths (`linear.rs`).
@@ -14,6 +16,7 @@
 //! All methods reproduce the source at `t = 0` and the target at `t = 1`. Each connected part
 //! moves its vertex centroid along the straight line between its end centroids.
 
+mod area;
 mod assembly;
 mod disc;
 mod linear;
@@ -93,7 +96,9 @@ impl Interpolator {
         let kind = match method {
             Method::Disc => {
                 let rings = crate::mesh::one_rings(triangles, n);
-                Kind::Disc(DiscRigid::new(source, target, &rings)?)
+                Kind::Disc(DiscRigid::with_area_rule(
+                    source, target, &rings, triangles,
+                )?)
             }
             Method::Triangle => {
                 let rings = crate::mesh::one_rings(triangles, n);

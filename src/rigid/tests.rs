@@ -293,7 +293,7 @@ fn thin_triangles_make_the_triangle_baseline_spike_not_the_disc_method() {
 }
 
 /// A stretch ×2 across and ×½ along, turned by 2.5 rad: the end areas are equal, so the disc
-/// size rule (disc.rs) keeps the area at the blend; per-edge scales alone give 1.5 × 0.75 =
+/// area rule (area.rs) keeps the area at the blend; per-edge scales alone give 1.5 × 0.75 =
 /// 1.125 at t = ½. The stretch direction's length still interpolates linearly in between.
 #[test]
 fn uneven_stretch_keeps_the_area_of_the_blend() {

@@ -42,9 +42,8 @@ fn frames_are_exact_at_the_ends_and_never_inverted() {
 fn a_half_turn_keeps_its_area_where_linear_interpolation_collapses() {
     // leaf → butterfly turns by about 180°: the area stays within 10% of the linear blend of
     // the end areas at every frame (the bound). Measured with `cargo run --release
-    // --example area`: 1.000–1.011 of the blend from the leaf, 0.994–1.001 from the butterfly
-    // (the paper's per-edge scales alone swell it to 1.128; see the disc size rule in
-    // src/rigid/disc.rs). Linear interpolation collapses to 0.03.
+    // --example area`: 0.997–1.000 of the blend in both directions (eq. (1) alone swells it to
+    // 1.128; see the area rule in src/rigid/area.rs). Linear interpolation collapses to 0.03.
     use crmorph::quality::area;
     let d = crate::common::fixtures().join("leaf-to-butterfly");
     let (s, t) = (open(&d.join("source.svg")), open(&d.join("target.svg")));
