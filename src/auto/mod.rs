@@ -16,6 +16,7 @@
 pub mod contours;
 pub mod geometric;
 pub mod matching;
+mod seed;
 
 use crate::artwork::Scene;
 use crate::compatible::{build, Compatible, MorphOptions};
@@ -124,10 +125,19 @@ pub fn build_auto(
             };
             let (pa, pb) = (&holes[parent], &others[other_parent]);
             let scale = (pb.area / pa.area.max(1e-300)).sqrt();
-            let centre = pb.centroid + (hole.centroid - pa.centroid) * scale;
+            let want = pb.centroid + (hole.centroid - pa.centroid) * scale;
+            let their_holes: Vec<&Contour> = others
+                .iter()
+                .filter(|c| c.parent == Some(other_parent))
+                .collect();
+            let Some((centre, room)) = seed::seed_place(pb, &their_holes, want) else {
+                continue;
+            };
+            let floor = 4.0 * s.tolerances.snap.max(t.tolerances.snap);
             let radius = (0.15 * (hole.area / std::f64::consts::PI).sqrt() * scale)
-                .max(4.0 * s.tolerances.snap.max(t.tolerances.snap));
-            let seed = seed_circle(centre, radius, hole.points.len().clamp(12, 64));
+                .min(room)
+                .max(floor);
+            let seed = seed::seed_circle(centre, radius, hole.points.len().clamp(12, 64));
             let name = format!("auto-{k}");
             k += 1;
             let real = feature(&name, hole, step);
@@ -243,16 +253,6 @@ fn densify(points: &[Point], closed: bool, step: f64) -> Vec<Point> {
         }
     }
     out
-}
-
-/// A small circle (counter-clockwise in SVG coordinates like the outlines it stands for).
-fn seed_circle(centre: Point, radius: f64, n: usize) -> Vec<Point> {
-    (0..n)
-        .map(|i| {
-            let a = i as f64 / n as f64 * std::f64::consts::TAU;
-            centre + Point::new(a.cos(), a.sin()) * radius
-        })
-        .collect()
 }
 
 /// Pads the viewBox boundary of an unmarked drawing (a rectangle) about its centre.
