@@ -82,7 +82,8 @@ impl MorphingPath {
     }
 }
 
-/// The overlay scene of frame `t`: every morphing path at `vertices`, in source paint order,
+/// The scene of morphing paths `paths` at frame `t` (one [`crate::render::Layer::Over`] of
+/// the stack [`crate::export::Morph`] paints), at `vertices`, in paint order,
 /// with `header`'s view and transform.
 pub fn overlay_at(
     paths: &[MorphingPath],
@@ -191,5 +192,88 @@ pub(crate) fn morphing_paths(
             });
         }
     }
-    out
+    in_paint_order(out)
+}
+
+/// The largest subset of `paths` whose paint order is the same in both drawings, sorted by
+/// source item: a longest strictly increasing subsequence of the target items taken in source
+/// order (earliest-ending choice on ties, so the result is deterministic). In-between frames
+/// interleave morphing paths with the blended rest of the artwork in one stack
+/// ([`crate::export::Morph`]), which needs one order; the paths left out cross-fade with the
+/// rest instead.
+pub(crate) fn in_paint_order(mut paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
+    paths.sort_by_key(|p| p.source_item);
+    // tails[k]: index of the path ending the best increasing run of length k + 1 found so far
+    // (the one with the smallest target item); back[i]: the path before i in its run.
+    let mut tails: Vec<usize> = Vec::new();
+    let mut back: Vec<Option<usize>> = vec![None; paths.len()];
+    for i in 0..paths.len() {
+        let key = paths[i].target_item;
+        let k = tails.partition_point(|&j| paths[j].target_item < key);
+        back[i] = k.checked_sub(1).map(|k| tails[k]);
+        if k == tails.len() {
+            tails.push(i);
+        } else {
+            tails[k] = i;
+        }
+    }
+    let mut keep = vec![false; paths.len()];
+    let mut at = tails.last().copied();
+    while let Some(i) = at {
+        keep[i] = true;
+        at = back[i];
+    }
+    paths
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(p))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn path(source_item: usize, target_item: usize) -> MorphingPath {
+        let p = PathItem {
+            id: String::new(),
+            path: BezPath::new(),
+            fill: None,
+            stroke: None,
+            stroke_first: false,
+        };
+        MorphingPath {
+            source_item,
+            target_item,
+            curves: Vec::new(),
+            source: p.clone(),
+            target: p,
+        }
+    }
+
+    fn order(pairs: &[(usize, usize)]) -> Vec<(usize, usize)> {
+        let paths = pairs.iter().map(|&(s, t)| path(s, t)).collect();
+        in_paint_order(paths)
+            .iter()
+            .map(|p| (p.source_item, p.target_item))
+            .collect()
+    }
+
+    #[test]
+    fn paint_order_keeps_the_largest_consistent_subset() {
+        assert_eq!(order(&[]), []);
+        assert_eq!(
+            order(&[(2, 5), (0, 1)]),
+            [(0, 1), (2, 5)],
+            "sorted by source"
+        );
+        // Source order 0..4 with targets 3 1 2 0: the run 1 2 is the longest.
+        assert_eq!(order(&[(0, 3), (1, 1), (2, 2), (3, 0)]), [(1, 1), (2, 2)]);
+        // Swapped pair in the middle: one of the two goes.
+        let kept = order(&[(0, 0), (1, 4), (2, 3), (3, 6)]);
+        assert_eq!(kept.len(), 3);
+        assert!(kept.windows(2).all(|w| w[0].1 < w[1].1));
+        // A target claimed twice is kept once.
+        assert_eq!(order(&[(0, 2), (1, 2)]).len(), 1);
+    }
 }
