@@ -82,7 +82,7 @@ struct Morphing {
 enum Part {
     /// The artwork painted between two morphing paths (in the source and in the target),
     /// bound on its own: blended as one layer.
-    Rest(ArtworkPair),
+    Rest(Box<ArtworkPair>),
     /// Consecutive morphing paths (indices into [`Morphing::paths`]), drawn unblended.
     Paths(std::ops::Range<usize>),
 }
@@ -157,7 +157,7 @@ impl Morph {
             let g = target.retain_items(bounds(k, |p| p.target_item));
             if !s.root.children.is_empty() || !g.root.children.is_empty() {
                 let pair = ArtworkPair::new(&s, &g, &m.meshes, frame.flatten_tolerance())?;
-                stack.push(Part::Rest(pair));
+                stack.push(Part::Rest(Box::new(pair)));
             }
             if k < paths.len() {
                 match stack.last_mut() {
