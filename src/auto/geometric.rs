@@ -4,16 +4,21 @@
 //! fill and stroke colours interpolated in Oklab and opacities and widths linearly — a crisp
 //! geometric transition, not two shapes cross-fading.
 //!
-//! Only plain paths qualify: solid fills and strokes, no dashes, no shaped pen, and no
-//! ancestor group with opacity or a clip. Anything else keeps the warp-and-blend of the rest of
-//! the artwork.
+//! Gradients interpolate too (see [`paint`]): their stops, and their geometry carried along by
+//! the outline's motion.
+//!
+//! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour
+//! or a gradient of the same kind), no dashes, no shaped pen, and no ancestor group with
+//! opacity or a clip. Anything else keeps the warp-and-blend of the rest of the artwork.
+
+mod paint;
 
 use super::contours::Contour;
 use crate::artwork::{Fill, Group, Item, Paint, PathItem, Scene, Stroke};
-use crate::color::mix;
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
-use kurbo::BezPath;
+use kurbo::{Affine, BezPath};
+use paint::{compatible, fitted_affine, mix_paint};
 
 /// A source path and a target path that morph as one shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +33,11 @@ pub struct MorphingPath {
     source: PathItem,
     /// The target path's paint.
     target: PathItem,
+    /// The source scene's root transform: its root user space (where the path and its
+    /// gradients live) → the mesh's space.
+    source_root: Affine,
+    /// The same for the target scene.
+    target_root: Affine,
 }
 
 impl MorphingPath {
@@ -50,10 +60,29 @@ impl MorphingPath {
             }
         }
         let lerp = |a: f64, b: f64| a + (b - a) * t;
-        let colour = |a: &Paint, b: &Paint| match (a, b) {
-            (Paint::Color(x), Paint::Color(y)) => Paint::Color(mix(*x, *y, t)),
-            _ => a.clone(),
+        // Gradients ride with the outline: each side's by the affine map that best carries
+        // its rest outline to the outline at t.
+        let gradients = [&self.source, &self.target].iter().any(|p| {
+            let g = |x: &Paint| matches!(x, Paint::Gradient(_));
+            p.fill.as_ref().is_some_and(|f| g(&f.paint))
+                || p.stroke.as_ref().is_some_and(|s| g(&s.paint))
+        });
+        let (source_map, target_map) = if gradients {
+            let outline = |mesh: &[Point]| -> Vec<Point> {
+                self.curves
+                    .iter()
+                    .flat_map(|&c| meshes.curves[c].vertices.iter().map(|&v| mesh[v as usize]))
+                    .collect()
+            };
+            let now = outline(vertices);
+            (
+                fitted_affine(&outline(&meshes.source), &now) * self.source_root,
+                fitted_affine(&outline(&meshes.target), &now) * self.target_root,
+            )
+        } else {
+            (self.source_root, self.target_root)
         };
+        let colour = |a: &Paint, b: &Paint| mix_paint(a, b, t, source_map, target_map);
         let fill = match (&self.source.fill, &self.target.fill) {
             (Some(a), Some(b)) => Some(Fill {
                 paint: colour(&a.paint, &b.paint),
@@ -110,8 +139,9 @@ pub fn overlay_at(
     }
 }
 
-/// Every item of `scene.items()` with whether it may morph as one shape: a path with solid
-/// paint, no dashes or shaped pen, under groups without opacity or clip.
+/// Every item of `scene.items()` with whether it may morph as one shape: a filled or stroked
+/// path with no dashes or shaped pen, under groups without opacity or clip (whether its paints
+/// interpolate with its partner's is checked per pair).
 fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
     fn walk(g: &Group, plain: bool, out: &mut Vec<Option<PathItem>>) {
         for c in &g.children {
@@ -121,12 +151,10 @@ fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
                     walk(sub, plain && sub.opacity == 1.0 && sub.clip.is_none(), out);
                 }
                 Item::Path(p) => {
-                    let solid = |paint: &Paint| matches!(paint, Paint::Color(_));
                     let ok = plain
-                        && p.fill.as_ref().is_none_or(|f| solid(&f.paint))
-                        && p.stroke.as_ref().is_none_or(|s| {
-                            solid(&s.paint) && s.dashes.is_empty() && s.frame.is_none()
-                        })
+                        && p.stroke
+                            .as_ref()
+                            .is_none_or(|s| s.dashes.is_empty() && s.frame.is_none())
                         && (p.fill.is_some() || p.stroke.is_some());
                     out.push(ok.then(|| p.clone()));
                 }
@@ -180,8 +208,17 @@ pub(crate) fn morphing_paths(
         let (Some(Some(a)), Some(Some(b))) = (ps.get(i), pt.get(j)) else {
             continue;
         };
-        let same_paint =
-            a.fill.is_some() == b.fill.is_some() && a.stroke.is_some() == b.stroke.is_some();
+        let paints = |x: Option<&Paint>, y: Option<&Paint>| match (x, y) {
+            (Some(x), Some(y)) => compatible(x, y),
+            (x, y) => x.is_none() && y.is_none(),
+        };
+        let same_paint = paints(
+            a.fill.as_ref().map(|f| &f.paint),
+            b.fill.as_ref().map(|f| &f.paint),
+        ) && paints(
+            a.stroke.as_ref().map(|s| &s.paint),
+            b.stroke.as_ref().map(|s| &s.paint),
+        );
         if one_target && same_paint {
             out.push(MorphingPath {
                 source_item: i,
@@ -189,6 +226,8 @@ pub(crate) fn morphing_paths(
                 curves: partners.iter().map(|p| p.1).collect(),
                 source: a.clone(),
                 target: b.clone(),
+                source_root: source_scene.root_transform,
+                target_root: target_scene.root_transform,
             });
         }
     }
@@ -248,6 +287,8 @@ mod tests {
             curves: Vec::new(),
             source: p.clone(),
             target: p,
+            source_root: Affine::IDENTITY,
+            target_root: Affine::IDENTITY,
         }
     }
 

@@ -400,7 +400,7 @@ impl Document {
         match &p.fill {
             Some(f) => {
                 a.push(("fill", self.paint(&f.paint, to_local, prefix, defs)));
-                if f.opacity != 1.0 {
+                if f.opacity != 1.0 || self.uniform {
                     a.push(("fill-opacity", Value::num(f.opacity, NumFormat::Sig)));
                 }
                 if f.even_odd {
@@ -435,7 +435,7 @@ impl Document {
             NumFormat::Fixed(self.decimals + 2)
         };
         a.push(("stroke-width", Value::num(s.width, format)));
-        if s.opacity != 1.0 {
+        if s.opacity != 1.0 || self.uniform {
             a.push(("stroke-opacity", Value::num(s.opacity, NumFormat::Sig)));
         }
         match s.cap {
@@ -449,7 +449,7 @@ impl Document {
             LineJoin::Round => a.push(("stroke-linejoin", "round".into())),
             LineJoin::Bevel => a.push(("stroke-linejoin", "bevel".into())),
         }
-        if s.miter_limit != 4.0 {
+        if s.miter_limit != 4.0 || self.uniform {
             a.push((
                 "stroke-miterlimit",
                 Value::num(s.miter_limit, NumFormat::Sig),
@@ -512,7 +512,7 @@ impl Document {
                     ("fx", s(focal.x)),
                     ("fy", s(focal.y)),
                 ]);
-                if focal_radius != 0.0 {
+                if focal_radius != 0.0 || self.uniform {
                     a.push(("fr", s(focal_radius)));
                 }
                 "radialGradient"
@@ -532,7 +532,7 @@ impl Document {
                 ("offset", s(st.offset)),
                 ("stop-color", hex(st.color).into()),
             ];
-            if st.opacity != 1.0 {
+            if st.opacity != 1.0 || self.uniform {
                 sa.push(("stop-opacity", s(st.opacity)));
             }
             defs.empty("stop", sa);

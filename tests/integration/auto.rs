@@ -447,3 +447,60 @@ fn in_between_frames_keep_the_inputs_paint_order() {
         .demultiply();
     assert!(q.red() > 200 && q.green() > 200 && q.blue() > 200, "{q:?}");
 }
+
+#[test]
+fn gradients_interpolate_on_paths_that_morph_as_one_shape() {
+    let (morph, items) = auto_morphing("gradient-badge");
+    assert_eq!(
+        items,
+        [0, 1],
+        "body and highlight morph, both with gradients"
+    );
+    let svg = morph.svg_at(0.5).unwrap();
+    assert!(svg.contains("<linearGradient") && svg.contains("<radialGradient"));
+    // Unblended: the gradients are painted once, not cross-faded (no blend filter group).
+    assert!(!svg.contains("crmorph-blend"), "nothing left to blend");
+    for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
+        let (a, b) = (
+            morph.pixmap_at(near).unwrap(),
+            morph.pixmap_at(end).unwrap(),
+        );
+        let off = share_beyond_a_pixel(&a, &b);
+        eprintln!(
+            "gradient-badge: t = {near}: {:.3} % pixels off t = {end} beyond an edge shift",
+            100.0 * off
+        );
+        assert!(off <= 0.005, "t = {near} pops: {off}");
+    }
+    for t in [0.25, 0.5, 0.75] {
+        let px = morph.pixmap_at(t).unwrap();
+        let off = share_off(&render_svg(&morph.svg_at(t).unwrap(), &px), &px);
+        eprintln!(
+            "gradient-badge: t = {t}: SVG vs raster {:.3} % pixels off",
+            100.0 * off
+        );
+        assert!(off <= 0.005, "SVG and raster frames differ at {t}: {off}");
+    }
+    // Mid-morph the body's gradient still runs across it: its top-left and bottom-right
+    // differ in colour, and both differ from either end's colours there.
+    let mid = morph.pixmap_at(0.5).unwrap();
+    let rgb = |p: &tiny_skia::Pixmap, x: u32, y: u32| {
+        let q = p.pixel(x, y).unwrap().demultiply();
+        [q.red(), q.green(), q.blue()]
+    };
+    let (tl, br) = (rgb(&mid, 56, 56), rgb(&mid, 136, 136));
+    eprintln!("gradient-badge at t = 0.5: top left {tl:?}, bottom right {br:?}");
+    let far = |a: [u8; 3], b: [u8; 3]| a.iter().zip(b).any(|(x, y)| x.abs_diff(y) > 30);
+    assert!(far(tl, br), "the gradient runs across the body");
+    let anim = morph
+        .animated_svg(&crmorph::export::Timeline {
+            frames: 12,
+            ..Default::default()
+        })
+        .unwrap();
+    usvg::Tree::from_str(&anim, &usvg::Options::default()).unwrap();
+    assert!(
+        anim.contains("attributeName=\"stop-color\""),
+        "stops animate"
+    );
+}
