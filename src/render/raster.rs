@@ -167,3 +167,64 @@ pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
     );
     encode_png(&pixmap)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::svg_frame::frame_svg_layers;
+
+    fn scene(body: &str) -> Scene {
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="30" height="30">{body}</svg>"#
+        );
+        Scene::from_svg("l.svg", &svg, "controls").unwrap()
+    }
+
+    #[test]
+    fn layers_stack_in_order_in_pixels_and_in_svg() {
+        let red = scene(r##"<rect width="30" height="30" fill="#ff0000"/>"##);
+        let blue = scene(r##"<rect x="5" y="5" width="20" height="20" fill="#0000ff"/>"##);
+        let white = scene(r##"<rect x="12" y="12" width="6" height="6" fill="#ffffff"/>"##);
+        let none = scene("");
+        // A detail blended in from nothing over a shape drawn as it is, over a blended ground.
+        let layers = [
+            Layer::Blend(&red, &red),
+            Layer::Over(&blue),
+            Layer::Blend(&none, &white),
+        ];
+        let opts = FrameOptions::for_scene(&red);
+        for t in [0.0, 0.5, 1.0] {
+            let px = frame_pixmap_layers(&layers, t, &opts).unwrap();
+            let rgba = |x, y| {
+                let p = px.pixel(x, y).unwrap();
+                [p.red(), p.green(), p.blue(), p.alpha()]
+            };
+            assert_eq!(rgba(1, 1), [255, 0, 0, 255], "t = {t}");
+            assert_eq!(rgba(7, 7), [0, 0, 255, 255], "t = {t}");
+            // The centre: blue under the detail at weight t.
+            let w = (255.0 * t).round() as u8;
+            let c = rgba(15, 15);
+            assert!(
+                c[0].abs_diff(w) <= 1 && c[2] == 255 && c[3] == 255,
+                "t = {t}: {c:?}"
+            );
+            // The SVG frame stacks the same way (one filter group per blend layer).
+            let svg = frame_svg_layers(&layers, t, &opts).unwrap();
+            let groups = svg.matches("filter=\"url(#crmorph-blend)\"").count();
+            assert_eq!(groups, if t == 0.5 { 2 } else { 0 });
+            let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
+            let mut from_svg = Pixmap::new(30, 30).unwrap();
+            resvg::render(&tree, Transform::identity(), &mut from_svg.as_mut());
+            let worst = from_svg
+                .data()
+                .iter()
+                .zip(px.data())
+                .map(|(a, b)| a.abs_diff(*b))
+                .max();
+            assert!(
+                worst <= Some(2),
+                "t = {t}: SVG and pixels differ by {worst:?}"
+            );
+        }
+    }
+}

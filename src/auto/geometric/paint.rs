@@ -301,3 +301,215 @@ pub(super) fn fitted_affine(from: &[Point], to: &[Point]) -> Affine {
     let c = linear * kurbo::Point::new(cp.x, cp.y);
     Affine::translate((cq.x - c.x, cq.y - c.y)) * linear
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn rgb(r: u8, g: u8, b: u8) -> Rgba {
+        Rgba { r, g, b, a: 255 }
+    }
+
+    fn stop(offset: f64, color: Rgba, opacity: f64) -> GradientStop {
+        GradientStop {
+            offset,
+            color,
+            opacity,
+        }
+    }
+
+    fn apply(m: Affine, p: Point) -> Point {
+        let q = m * kurbo::Point::new(p.x, p.y);
+        Point::new(q.x, q.y)
+    }
+
+    #[test]
+    fn the_fitted_affine_recovers_an_affine_motion_and_degrades_gracefully() {
+        let m = Affine::new([1.3, 0.4, -0.7, 0.9, 5.0, -2.0]);
+        let from = [(0.0, 0.0), (3.0, 1.0), (1.0, 4.0), (-2.0, 2.0)].map(|(x, y)| Point::new(x, y));
+        let to = from.map(|p| apply(m, p));
+        let fit = fitted_affine(&from, &to);
+        for (a, b) in fit.as_coeffs().iter().zip(m.as_coeffs()) {
+            assert!((a - b).abs() < 1e-9, "{fit:?} vs {m:?}");
+        }
+        // Points on a line: the best similarity (here a quarter turn, doubled, moved).
+        let line = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)].map(|(x, y)| Point::new(x, y));
+        let sim = Affine::translate((1.0, 1.0))
+            * Affine::rotate(std::f64::consts::FRAC_PI_2)
+            * Affine::scale(2.0);
+        let fit = fitted_affine(&line, &line.map(|p| apply(sim, p)));
+        for (a, b) in fit.as_coeffs().iter().zip(sim.as_coeffs()) {
+            assert!((a - b).abs() < 1e-9, "{fit:?} vs {sim:?}");
+        }
+        let one = fitted_affine(&[Point::new(1.0, 1.0)], &[Point::new(4.0, 5.0)]);
+        assert_eq!(one, Affine::translate((3.0, 4.0)));
+        assert_eq!(fitted_affine(&[], &[]), Affine::IDENTITY);
+    }
+
+    #[test]
+    fn resampled_stops_paint_each_end_and_keep_hard_edges() {
+        let a = [
+            stop(0.0, rgb(255, 0, 0), 1.0),
+            stop(0.5, rgb(0, 0, 255), 1.0),
+            stop(0.5, rgb(0, 255, 0), 0.5),
+            stop(1.0, rgb(0, 0, 0), 0.0),
+        ];
+        let b = [
+            stop(0.2, rgb(10, 20, 30), 1.0),
+            stop(0.8, rgb(200, 100, 0), 1.0),
+        ];
+        for (t, side) in [(0.0, &a[..]), (1.0, &b[..])] {
+            let m = mix_stops(&a, &b, t);
+            assert!(m.windows(2).all(|w| w[0].offset <= w[1].offset));
+            for k in 0..=40 {
+                let u = k as f64 / 40.0;
+                for right in [false, true] {
+                    let (p, q) = (sample(&m, u, right), sample(side, u, right));
+                    let near = |x: u8, y: u8| x.abs_diff(y) <= 1;
+                    assert!(
+                        near(p.0.r, q.0.r) && near(p.0.g, q.0.g) && near(p.0.b, q.0.b),
+                        "t = {t}, offset {u}: {p:?} vs {q:?}"
+                    );
+                    assert!((p.1 - q.1).abs() < 1e-9);
+                }
+            }
+        }
+        // The hard edge at 0.5 stays hard in between; the union has offsets 0, .2, .5, .8, 1.
+        let m = mix_stops(&a, &b, 0.5);
+        let offsets: Vec<f64> = m.iter().map(|s| s.offset).collect();
+        assert_eq!(offsets, [0.0, 0.2, 0.5, 0.5, 0.8, 1.0]);
+        // Colours mix in Oklab.
+        assert_eq!(
+            m[1].color,
+            mix(sample(&a, 0.2, false).0, rgb(10, 20, 30), 0.5)
+        );
+    }
+
+    #[test]
+    fn colours_mix_in_oklab_and_a_colour_meets_a_gradient_on_its_geometry() {
+        let (x, y) = (rgb(0, 200, 0), rgb(200, 0, 0));
+        let id = Affine::IDENTITY;
+        assert_eq!(
+            mix_paint(&Paint::Color(x), &Paint::Color(y), 0.3, id, id),
+            Paint::Color(mix(x, y, 0.3))
+        );
+        let g = Gradient {
+            kind: GradientKind::Linear {
+                start: Point::new(0.0, 0.0),
+                end: Point::new(10.0, 0.0),
+            },
+            transform: Affine::IDENTITY,
+            spread: Spread::Reflect,
+            stops: vec![
+                stop(0.0, rgb(0, 0, 0), 1.0),
+                stop(1.0, rgb(255, 255, 255), 1.0),
+            ],
+        };
+        let moved = Affine::translate((5.0, 0.0));
+        let Paint::Gradient(m) = mix_paint(
+            &Paint::Color(x),
+            &Paint::Gradient(Arc::new(g)),
+            0.0,
+            id,
+            moved,
+        ) else {
+            panic!("a gradient");
+        };
+        assert!(m.stops.iter().all(|s| s.color == x && s.opacity == 1.0));
+        assert_eq!(m.spread, Spread::Reflect);
+        let GradientKind::Linear { start, end } = m.kind else {
+            panic!("linear");
+        };
+        assert!(start.distance(Point::new(5.0, 0.0)) < 1e-12);
+        assert!(end.distance(Point::new(15.0, 0.0)) < 1e-12);
+        // Linear and radial do not interpolate; empty gradients neither.
+        let radial = Gradient {
+            kind: GradientKind::Radial {
+                center: Point::ZERO,
+                radius: 1.0,
+                focal: Point::ZERO,
+                focal_radius: 0.0,
+            },
+            ..(*m).clone()
+        };
+        assert!(!compatible(
+            &Paint::Gradient(m.clone()),
+            &Paint::Gradient(Arc::new(radial.clone()))
+        ));
+        assert!(compatible(
+            &Paint::Color(x),
+            &Paint::Gradient(Arc::new(radial.clone()))
+        ));
+        let empty = Gradient {
+            stops: Vec::new(),
+            ..radial
+        };
+        assert!(!compatible(
+            &Paint::Color(x),
+            &Paint::Gradient(Arc::new(empty))
+        ));
+    }
+
+    proptest! {
+        /// A linear gradient under any invertible affine map, rewritten in user space, paints
+        /// the same parameter everywhere.
+        #[test]
+        fn linear_gradients_keep_their_parameter_in_user_space(
+            c in prop::array::uniform6(-3.0f64..3.0),
+            s in prop::array::uniform2(-5.0f64..5.0),
+            e in prop::array::uniform2(-5.0f64..5.0),
+            y in prop::array::uniform2(-10.0f64..10.0),
+        ) {
+            let m = Affine::new(c);
+            prop_assume!(m.determinant().abs() > 0.1);
+            let (start, end) = (Point::new(s[0], s[1]), Point::new(e[0], e[1]));
+            prop_assume!(start.distance(end) > 0.1);
+            let g = Gradient {
+                kind: GradientKind::Linear { start, end },
+                transform: Affine::scale(0.5),
+                spread: Spread::Pad,
+                stops: Vec::new(),
+            };
+            let Geometry::Linear { start: s2, end: e2 } = Geometry::of(&g, m) else {
+                panic!("linear");
+            };
+            let y = Point::new(y[0], y[1]);
+            let local = apply((m * g.transform).inverse(), y);
+            let want = (local - start).dot(end - start) / (end - start).length_squared();
+            let got = (y - s2).dot(e2 - s2) / (e2 - s2).length_squared();
+            prop_assert!((want - got).abs() < 1e-6 * (1.0 + want.abs()), "{want} vs {got}");
+        }
+
+        /// A radial gradient's unit frame maps the unit circle onto the mapped end circle and
+        /// the normalized focal point onto the mapped focal point.
+        #[test]
+        fn radial_frames_carry_the_circles(
+            c in prop::array::uniform6(-3.0f64..3.0),
+            centre in prop::array::uniform2(-5.0f64..5.0),
+            r in 0.1f64..4.0,
+            angle in 0.0f64..6.3,
+        ) {
+            let m = Affine::new(c);
+            let center = Point::new(centre[0], centre[1]);
+            let focal = center + Point::new(0.3 * r, -0.2 * r);
+            let g = Gradient {
+                kind: GradientKind::Radial { center, radius: r, focal, focal_radius: 0.1 * r },
+                transform: Affine::IDENTITY,
+                spread: Spread::Pad,
+                stops: Vec::new(),
+            };
+            let Geometry::Radial { frame, radius, focal: f2, focal_radius } = Geometry::of(&g, m)
+            else {
+                panic!("radial");
+            };
+            prop_assert_eq!(radius, 1.0);
+            prop_assert!((focal_radius - 0.1).abs() < 1e-12);
+            let (sin, cos) = angle.sin_cos();
+            let on = apply(frame, Point::new(cos, sin));
+            let want = apply(m, center + Point::new(cos, sin) * r);
+            prop_assert!(on.distance(want) < 1e-9);
+            prop_assert!(apply(frame, f2).distance(apply(m, focal)) < 1e-9);
+        }
+    }
+}
