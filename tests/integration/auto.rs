@@ -446,6 +446,16 @@ fn in_between_frames_keep_the_inputs_paint_order() {
         .unwrap()
         .demultiply();
     assert!(q.red() > 200 && q.green() > 200 && q.blue() > 200, "{q:?}");
+    // The animated SVG stacks the same layers in every keyframe: the body, then the detail's
+    // own blend group over it.
+    let tl = crmorph::export::Timeline {
+        frames: 9,
+        ..Default::default()
+    };
+    let anim = morph.animated_svg(&tl).unwrap();
+    usvg::Tree::from_str(&anim, &usvg::Options::default()).unwrap();
+    assert_eq!(anim.matches("filter=\"url(#crmorph-blend)\"").count(), 1);
+    assert_eq!(anim, morph.animated_svg(&tl).unwrap(), "deterministic");
 }
 
 #[test]
