@@ -4,7 +4,7 @@
 //! fill and stroke colours interpolated in Oklab and opacities and widths linearly — a crisp
 //! geometric transition, not two shapes cross-fading.
 //!
-//! Gradients interpolate too (see [`paint`]): their stops, and their geometry carried along by
+//! Gradients interpolate too (module `paint`): their stops, and their geometry carried along by
 //! the outline's motion.
 //!
 //! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour
