@@ -239,6 +239,45 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// The scene with only the paths and images whose indices into [`Scene::items`] satisfy
+    /// `keep`, each in its groups (transform-free, so the groups are just nesting with their
+    /// opacity and clip); groups left without any kept path or image are dropped. Used to split
+    /// the artwork into paint-order layers: painting the layers of a partition of the items in
+    /// order paints the scene, as long as no group with opacity or a clip is split.
+    pub fn retain_items(&self, keep: impl Fn(usize) -> bool) -> Scene {
+        fn walk(g: &Group, next: &mut usize, keep: &dyn Fn(usize) -> bool) -> Group {
+            let mut children = Vec::new();
+            for c in &g.children {
+                let index = *next;
+                *next += 1;
+                match c {
+                    Item::Group(sub) => {
+                        let kept = walk(sub, next, keep);
+                        if !kept.children.is_empty() {
+                            children.push(Item::Group(kept));
+                        }
+                    }
+                    other => {
+                        if keep(index) {
+                            children.push(other.clone());
+                        }
+                    }
+                }
+            }
+            Group {
+                children,
+                ..g.clone()
+            }
+        }
+        let mut next = 0;
+        Scene {
+            root: walk(&self.root, &mut next, &keep),
+            ..self.clone()
+        }
+    }
+}
+
 struct Reader<'a> {
     file: &'a str,
     guides: &'a str,
@@ -669,5 +708,32 @@ mod tests {
     #[test]
     fn bad_input_is_an_error_not_a_panic() {
         assert!(Scene::from_svg("x.svg", "not svg", "controls").is_err());
+    }
+
+    #[test]
+    fn retained_items_partition_the_scene_in_paint_order() {
+        let svg = r##"<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40">
+          <rect id="a" width="10" height="10"/>
+          <g id="g"><rect id="b" width="5" height="5"/><rect id="c" width="6" height="6"/></g>
+          <g id="empty-after-split" opacity="0.5"><rect id="d" width="7" height="7"/></g></svg>"##;
+        let s = Scene::from_svg("r.svg", svg, "controls").unwrap();
+        let ids = |sc: &Scene| -> Vec<String> {
+            sc.items()
+                .iter()
+                .map(|i| match i {
+                    Item::Group(g) => g.id.clone(),
+                    Item::Path(p) => p.id.clone(),
+                    Item::Image(m) => m.id.clone(),
+                })
+                .collect()
+        };
+        assert_eq!(ids(&s), ["a", "g", "b", "c", "empty-after-split", "d"]);
+        // Items 0..3 (a, g, b) and the rest: the plain group is split, the other kept whole.
+        let lo = s.retain_items(|i| i < 3);
+        let hi = s.retain_items(|i| i >= 3);
+        assert_eq!(ids(&lo), ["a", "g", "b"]);
+        assert_eq!(ids(&hi), ["g", "c", "empty-after-split", "d"]);
+        assert!(s.retain_items(|_| false).root.children.is_empty());
+        assert_eq!(s.retain_items(|_| true).root, s.root);
     }
 }

@@ -4,16 +4,21 @@
 //! fill and stroke colours interpolated in Oklab and opacities and widths linearly — a crisp
 //! geometric transition, not two shapes cross-fading.
 //!
-//! Only plain paths qualify: solid fills and strokes, no dashes, no shaped pen, and no
-//! ancestor group with opacity or a clip. Anything else keeps the warp-and-blend of the rest of
-//! the artwork.
+//! Gradients interpolate too (module `paint`): their stops, and their geometry carried along by
+//! the outline's motion.
+//!
+//! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour
+//! or a gradient of the same kind), no dashes, no shaped pen, and no ancestor group with
+//! opacity or a clip. Anything else keeps the warp-and-blend of the rest of the artwork.
+
+mod paint;
 
 use super::contours::Contour;
 use crate::artwork::{Fill, Group, Item, Paint, PathItem, Scene, Stroke};
-use crate::color::mix;
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
-use kurbo::BezPath;
+use kurbo::{Affine, BezPath};
+use paint::{compatible, fitted_affine, mix_paint};
 
 /// A source path and a target path that morph as one shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +33,11 @@ pub struct MorphingPath {
     source: PathItem,
     /// The target path's paint.
     target: PathItem,
+    /// The source scene's root transform: its root user space (where the path and its
+    /// gradients live) → the mesh's space.
+    source_root: Affine,
+    /// The same for the target scene.
+    target_root: Affine,
 }
 
 impl MorphingPath {
@@ -50,10 +60,29 @@ impl MorphingPath {
             }
         }
         let lerp = |a: f64, b: f64| a + (b - a) * t;
-        let colour = |a: &Paint, b: &Paint| match (a, b) {
-            (Paint::Color(x), Paint::Color(y)) => Paint::Color(mix(*x, *y, t)),
-            _ => a.clone(),
+        // Gradients ride with the outline: each side's by the affine map that best carries
+        // its rest outline to the outline at t.
+        let gradients = [&self.source, &self.target].iter().any(|p| {
+            let g = |x: &Paint| matches!(x, Paint::Gradient(_));
+            p.fill.as_ref().is_some_and(|f| g(&f.paint))
+                || p.stroke.as_ref().is_some_and(|s| g(&s.paint))
+        });
+        let (source_map, target_map) = if gradients {
+            let outline = |mesh: &[Point]| -> Vec<Point> {
+                self.curves
+                    .iter()
+                    .flat_map(|&c| meshes.curves[c].vertices.iter().map(|&v| mesh[v as usize]))
+                    .collect()
+            };
+            let now = outline(vertices);
+            (
+                fitted_affine(&outline(&meshes.source), &now) * self.source_root,
+                fitted_affine(&outline(&meshes.target), &now) * self.target_root,
+            )
+        } else {
+            (self.source_root, self.target_root)
         };
+        let colour = |a: &Paint, b: &Paint| mix_paint(a, b, t, source_map, target_map);
         let fill = match (&self.source.fill, &self.target.fill) {
             (Some(a), Some(b)) => Some(Fill {
                 paint: colour(&a.paint, &b.paint),
@@ -82,7 +111,8 @@ impl MorphingPath {
     }
 }
 
-/// The overlay scene of frame `t`: every morphing path at `vertices`, in source paint order,
+/// The scene of morphing paths `paths` at frame `t` (one [`crate::render::Layer::Over`] of
+/// the stack [`crate::export::Morph`] paints), at `vertices`, in paint order,
 /// with `header`'s view and transform.
 pub fn overlay_at(
     paths: &[MorphingPath],
@@ -109,8 +139,9 @@ pub fn overlay_at(
     }
 }
 
-/// Every item of `scene.items()` with whether it may morph as one shape: a path with solid
-/// paint, no dashes or shaped pen, under groups without opacity or clip.
+/// Every item of `scene.items()` with whether it may morph as one shape: a filled or stroked
+/// path with no dashes or shaped pen, under groups without opacity or clip (whether its paints
+/// interpolate with its partner's is checked per pair).
 fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
     fn walk(g: &Group, plain: bool, out: &mut Vec<Option<PathItem>>) {
         for c in &g.children {
@@ -120,12 +151,10 @@ fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
                     walk(sub, plain && sub.opacity == 1.0 && sub.clip.is_none(), out);
                 }
                 Item::Path(p) => {
-                    let solid = |paint: &Paint| matches!(paint, Paint::Color(_));
                     let ok = plain
-                        && p.fill.as_ref().is_none_or(|f| solid(&f.paint))
-                        && p.stroke.as_ref().is_none_or(|s| {
-                            solid(&s.paint) && s.dashes.is_empty() && s.frame.is_none()
-                        })
+                        && p.stroke
+                            .as_ref()
+                            .is_none_or(|s| s.dashes.is_empty() && s.frame.is_none())
                         && (p.fill.is_some() || p.stroke.is_some());
                     out.push(ok.then(|| p.clone()));
                 }
@@ -179,8 +208,17 @@ pub(crate) fn morphing_paths(
         let (Some(Some(a)), Some(Some(b))) = (ps.get(i), pt.get(j)) else {
             continue;
         };
-        let same_paint =
-            a.fill.is_some() == b.fill.is_some() && a.stroke.is_some() == b.stroke.is_some();
+        let paints = |x: Option<&Paint>, y: Option<&Paint>| match (x, y) {
+            (Some(x), Some(y)) => compatible(x, y),
+            (x, y) => x.is_none() && y.is_none(),
+        };
+        let same_paint = paints(
+            a.fill.as_ref().map(|f| &f.paint),
+            b.fill.as_ref().map(|f| &f.paint),
+        ) && paints(
+            a.stroke.as_ref().map(|s| &s.paint),
+            b.stroke.as_ref().map(|s| &s.paint),
+        );
         if one_target && same_paint {
             out.push(MorphingPath {
                 source_item: i,
@@ -188,8 +226,95 @@ pub(crate) fn morphing_paths(
                 curves: partners.iter().map(|p| p.1).collect(),
                 source: a.clone(),
                 target: b.clone(),
+                source_root: source_scene.root_transform,
+                target_root: target_scene.root_transform,
             });
         }
     }
-    out
+    in_paint_order(out)
+}
+
+/// The largest subset of `paths` whose paint order is the same in both drawings, sorted by
+/// source item: a longest strictly increasing subsequence of the target items taken in source
+/// order (earliest-ending choice on ties, so the result is deterministic). In-between frames
+/// interleave morphing paths with the blended rest of the artwork in one stack
+/// ([`crate::export::Morph`]), which needs one order; the paths left out cross-fade with the
+/// rest instead.
+pub(crate) fn in_paint_order(mut paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
+    paths.sort_by_key(|p| p.source_item);
+    // tails[k]: index of the path ending the best increasing run of length k + 1 found so far
+    // (the one with the smallest target item); back[i]: the path before i in its run.
+    let mut tails: Vec<usize> = Vec::new();
+    let mut back: Vec<Option<usize>> = vec![None; paths.len()];
+    for i in 0..paths.len() {
+        let key = paths[i].target_item;
+        let k = tails.partition_point(|&j| paths[j].target_item < key);
+        back[i] = k.checked_sub(1).map(|k| tails[k]);
+        if k == tails.len() {
+            tails.push(i);
+        } else {
+            tails[k] = i;
+        }
+    }
+    let mut keep = vec![false; paths.len()];
+    let mut at = tails.last().copied();
+    while let Some(i) = at {
+        keep[i] = true;
+        at = back[i];
+    }
+    paths
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(p))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn path(source_item: usize, target_item: usize) -> MorphingPath {
+        let p = PathItem {
+            id: String::new(),
+            path: BezPath::new(),
+            fill: None,
+            stroke: None,
+            stroke_first: false,
+        };
+        MorphingPath {
+            source_item,
+            target_item,
+            curves: Vec::new(),
+            source: p.clone(),
+            target: p,
+            source_root: Affine::IDENTITY,
+            target_root: Affine::IDENTITY,
+        }
+    }
+
+    fn order(pairs: &[(usize, usize)]) -> Vec<(usize, usize)> {
+        let paths = pairs.iter().map(|&(s, t)| path(s, t)).collect();
+        in_paint_order(paths)
+            .iter()
+            .map(|p| (p.source_item, p.target_item))
+            .collect()
+    }
+
+    #[test]
+    fn paint_order_keeps_the_largest_consistent_subset() {
+        assert_eq!(order(&[]), []);
+        assert_eq!(
+            order(&[(2, 5), (0, 1)]),
+            [(0, 1), (2, 5)],
+            "sorted by source"
+        );
+        // Source order 0..4 with targets 3 1 2 0: the run 1 2 is the longest.
+        assert_eq!(order(&[(0, 3), (1, 1), (2, 2), (3, 0)]), [(1, 1), (2, 2)]);
+        // Swapped pair in the middle: one of the two goes.
+        let kept = order(&[(0, 0), (1, 4), (2, 3), (3, 6)]);
+        assert_eq!(kept.len(), 3);
+        assert!(kept.windows(2).all(|w| w[0].1 < w[1].1));
+        // A target claimed twice is kept once.
+        assert_eq!(order(&[(0, 2), (1, 2)]).len(), 1);
+    }
 }

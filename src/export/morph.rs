@@ -6,13 +6,13 @@
 //! sequences are computed in parallel.
 
 use crate::artwork::{ArtworkPair, Scene};
-use crate::auto::geometric::{overlay_at, MorphingPath};
+use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::{encode_apng, encode_gif, preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::render::{
-    animated_svg_with_overlays, frame_pixmap_with_overlay, frame_svg_with_overlay, FrameOptions,
+    animated_svg_layers, frame_pixmap_layers, frame_svg_layers, FrameOptions, Layer,
 };
 use crate::rigid::Interpolator;
 use crate::skeleton::SkeletonControl;
@@ -68,11 +68,42 @@ pub struct Morph {
     morphing: Option<Morphing>,
 }
 
-/// The in-between frames' split of the artwork when some paths morph as one shape.
+/// The in-between frames' split of the artwork when some paths morph as one shape: a stack
+/// of parts in the inputs' paint order.
 struct Morphing {
+    /// The morphing paths, in paint order (the same in both drawings).
     paths: Vec<MorphingPath>,
-    rest: ArtworkPair,
+    /// Bottom first; never two [`Part::Paths`] in a row, no empty [`Part::Rest`].
+    stack: Vec<Part>,
     header: Scene,
+}
+
+/// One part of the stack of a frame with morphing paths.
+enum Part {
+    /// The artwork painted between two morphing paths (in the source and in the target),
+    /// bound on its own: blended as one layer.
+    Rest(Box<ArtworkPair>),
+    /// Consecutive morphing paths (indices into [`Morphing::paths`]), drawn unblended.
+    Paths(std::ops::Range<usize>),
+}
+
+/// A frame's layers, owning their scenes (see [`Layer`]).
+enum Owned {
+    Blend(Scene, Scene),
+    Over(Scene),
+}
+
+impl Owned {
+    fn layer(&self) -> Layer<'_> {
+        match self {
+            Owned::Blend(s, g) => Layer::Blend(s, g),
+            Owned::Over(o) => Layer::Over(o),
+        }
+    }
+}
+
+fn layers(owned: &[Owned]) -> Vec<Layer<'_>> {
+    owned.iter().map(Owned::layer).collect()
 }
 
 impl Morph {
@@ -96,9 +127,12 @@ impl Morph {
     }
 
     /// [`Morph::new`] where `paths` (automatic mode's matched artwork,
-    /// [`crate::auto::geometric`]) morph as one shape each: in-between frames draw them over
-    /// the blend of the rest of the artwork. Frames t = 0 and t = 1 stay the exact input
-    /// drawings.
+    /// [`crate::auto::geometric`]) morph as one shape each. In-between frames keep the inputs'
+    /// paint order: they are a stack of the rest of the artwork painted below the first
+    /// morphing path (blended), that path, the rest painted between it and the next one
+    /// (blended), and so on. Paths whose order differs between the drawings are left to the
+    /// blend (the largest consistently ordered subset morphs). Frames t = 0 and t = 1 stay
+    /// the exact input drawings, and frames near them converge to them.
     pub fn with_morphing_paths(
         meshes: CompatibleMeshes,
         motion: impl Into<Motion>,
@@ -108,44 +142,66 @@ impl Morph {
         paths: Vec<MorphingPath>,
     ) -> Result<Self> {
         let mut m = Morph::new(meshes, motion, source, target, frame)?;
-        if !paths.is_empty() {
-            let s_items: Vec<usize> = paths.iter().map(|p| p.source_item).collect();
-            let t_items: Vec<usize> = paths.iter().map(|p| p.target_item).collect();
-            let rest = ArtworkPair::new(
-                &source.without_items(&s_items),
-                &target.without_items(&t_items),
-                &m.meshes,
-                frame.flatten_tolerance(),
-            )?;
-            m.morphing = Some(Morphing {
-                paths,
-                rest,
-                header: source.clone(),
-            });
+        let paths = in_paint_order(paths);
+        if paths.is_empty() {
+            return Ok(m);
         }
+        let mut stack = Vec::new();
+        let bounds = |k: usize, item: fn(&MorphingPath) -> usize| {
+            let lo = k.checked_sub(1).map(|j| item(&paths[j]));
+            let hi = paths.get(k).map(item);
+            move |i: usize| lo.is_none_or(|lo| i > lo) && hi.is_none_or(|hi| i < hi)
+        };
+        for k in 0..=paths.len() {
+            let s = source.retain_items(bounds(k, |p| p.source_item));
+            let g = target.retain_items(bounds(k, |p| p.target_item));
+            if !s.root.children.is_empty() || !g.root.children.is_empty() {
+                let pair = ArtworkPair::new(&s, &g, &m.meshes, frame.flatten_tolerance())?;
+                stack.push(Part::Rest(Box::new(pair)));
+            }
+            if k < paths.len() {
+                match stack.last_mut() {
+                    Some(Part::Paths(r)) => r.end = k + 1,
+                    _ => stack.push(Part::Paths(k..k + 1)),
+                }
+            }
+        }
+        m.morphing = Some(Morphing {
+            paths,
+            stack,
+            header: source.clone(),
+        });
         Ok(m)
     }
 
-    /// The overlay of morphing paths at `t` with mesh `v`, if any.
-    fn overlay(&self, v: &[Point], t: f64) -> Option<Scene> {
-        self.morphing
-            .as_ref()
-            .map(|m| overlay_at(&m.paths, &self.meshes, v, t, &m.header))
-    }
-
-    /// Source and target scenes at `t` and the overlay: the exact inputs at the ends; in
-    /// between, with morphing paths, the rest of the artwork and the paths over it.
-    fn layers_at(&self, t: f64) -> Result<(Scene, Scene, Option<Scene>)> {
-        let v = self.vertices_at(t);
+    /// The layers of the frame at `t` whose mesh is `v`: the exact inputs at the ends
+    /// (`warped` false) and in between, with morphing paths, the stack of parts. `warped`
+    /// warps even at the ends, so that every animation keyframe has the same structure.
+    fn layers_at(&self, v: &[Point], t: f64, warped: bool) -> Result<Vec<Owned>> {
+        let whole = |pair: &ArtworkPair| -> Result<Owned> {
+            let (s, g) = if warped {
+                pair.warped_at(v)?
+            } else {
+                pair.at(v)?
+            };
+            Ok(Owned::Blend(s, g))
+        };
         match &self.morphing {
-            Some(m) if t > 0.0 && t < 1.0 => {
-                let (s, g) = m.rest.at(&v)?;
-                Ok((s, g, self.overlay(&v, t)))
-            }
-            _ => {
-                let (s, g) = self.artwork.at(&v)?;
-                Ok((s, g, None))
-            }
+            Some(m) if warped || (t > 0.0 && t < 1.0) => m
+                .stack
+                .iter()
+                .map(|part| match part {
+                    Part::Rest(pair) => whole(pair),
+                    Part::Paths(r) => Ok(Owned::Over(overlay_at(
+                        &m.paths[r.clone()],
+                        &self.meshes,
+                        v,
+                        t,
+                        &m.header,
+                    ))),
+                })
+                .collect(),
+            _ => Ok(vec![whole(&self.artwork)?]),
         }
     }
 
@@ -182,14 +238,14 @@ impl Morph {
 
     /// Frame `t` as a standalone SVG.
     pub fn svg_at(&self, t: f64) -> Result<String> {
-        let (s, g, o) = self.layers_at(t)?;
-        frame_svg_with_overlay(&s, &g, o.as_ref(), t, &self.frame)
+        let owned = self.layers_at(&self.vertices_at(t), t, false)?;
+        frame_svg_layers(&layers(&owned), t, &self.frame)
     }
 
     /// Frame `t` rendered (premultiplied RGBA over the background).
     pub fn pixmap_at(&self, t: f64) -> Result<Pixmap> {
-        let (s, g, o) = self.layers_at(t)?;
-        frame_pixmap_with_overlay(&s, &g, o.as_ref(), t, &self.frame)
+        let owned = self.layers_at(&self.vertices_at(t), t, false)?;
+        frame_pixmap_layers(&layers(&owned), t, &self.frame)
     }
 
     /// Every frame of `timeline` as a standalone SVG, in frame order.
@@ -219,19 +275,13 @@ impl Morph {
     pub fn animated_svg(&self, timeline: &Timeline) -> Result<String> {
         let tl = timeline.sanitized();
         let frames = self.vertex_frames(&tl);
-        let pair = self.morphing.as_ref().map_or(&self.artwork, |m| &m.rest);
         let keyframes = frames
             .par_iter()
-            .map(|v| pair.warped_at(v))
+            .zip(tl.morph_times())
+            .map(|(v, t)| self.layers_at(v, t, true))
             .collect::<Result<Vec<_>>>()?;
-        let overlays: Option<Vec<Scene>> = self.morphing.as_ref().map(|_| {
-            frames
-                .iter()
-                .zip(tl.morph_times())
-                .filter_map(|(v, t)| self.overlay(v, t))
-                .collect()
-        });
-        animated_svg_with_overlays(&keyframes, overlays.as_deref(), &tl, &self.frame)
+        let refs: Vec<Vec<Layer>> = keyframes.iter().map(|k| layers(k)).collect();
+        animated_svg_layers(&refs, &tl, &self.frame)
     }
 
     /// The morph as an animated GIF (frames rendered in parallel; composited over the

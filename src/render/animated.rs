@@ -24,7 +24,7 @@
 //! linearly between them).
 
 use super::fit::fit_paths;
-use super::svg_frame::{frame_tree, Mode};
+use super::svg_frame::{frame_tree, Layer, Mode};
 use super::tree::{fixed, path_data, sig, Node, NumFormat, Value};
 use super::FrameOptions;
 use crate::artwork::Scene;
@@ -44,14 +44,18 @@ pub fn animated_svg(
     timeline: &Timeline,
     opts: &FrameOptions,
 ) -> Result<String> {
-    animated_svg_with_overlays(keyframes, None, timeline, opts)
+    let layers: Vec<Vec<Layer>> = keyframes
+        .iter()
+        .map(|(s, t)| vec![Layer::Blend(s, t)])
+        .collect();
+    animated_svg_layers(&layers, timeline, opts)
 }
 
-/// [`animated_svg`] with `overlays[i]` drawn over keyframe `i`'s blend (see
-/// [`super::svg_frame::frame_svg_with_overlay`]); every overlay must have the same structure.
-pub fn animated_svg_with_overlays(
-    keyframes: &[(Scene, Scene)],
-    overlays: Option<&[Scene]>,
+/// [`animated_svg`] of frames made of layers (see [`super::svg_frame::frame_svg_layers`]):
+/// `keyframes[i]` are keyframe `i`'s layers, bottom first. Every keyframe must have the same
+/// layers with the same structure (warped with [`crate::artwork::ArtworkPair::warped_at`]).
+pub fn animated_svg_layers(
+    keyframes: &[Vec<Layer>],
     timeline: &Timeline,
     opts: &FrameOptions,
 ) -> Result<String> {
@@ -64,17 +68,10 @@ pub fn animated_svg_with_overlays(
         )));
     }
     let ts = timeline.morph_times();
-    if overlays.is_some_and(|o| o.len() != keyframes.len()) {
-        return Err(Error::internal("one overlay per keyframe"));
-    }
     let trees: Vec<Node> = keyframes
         .par_iter()
         .zip(&ts)
-        .enumerate()
-        .map(|(i, ((s, t), &at))| {
-            let overlay = overlays.map(|o| &o[i]);
-            frame_tree(s, t, overlay, at, opts, Mode::Keyframe)
-        })
+        .map(|(layers, &at)| frame_tree(layers, at, opts, Mode::Keyframe))
         .collect();
     let mut order = timeline.sequence();
     if timeline.playback == Playback::Yoyo {

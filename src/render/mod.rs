@@ -13,12 +13,11 @@ mod raster;
 pub mod svg_frame;
 mod tree;
 
-pub use animated::{animated_svg, animated_svg_with_overlays};
+pub use animated::{animated_svg, animated_svg_layers};
 pub use raster::{
-    encode_png, frame_pixmap, frame_pixmap_with_overlay, frame_png, render_scene, straight_rgba,
-    svg_png,
+    encode_png, frame_pixmap, frame_pixmap_layers, frame_png, render_scene, straight_rgba, svg_png,
 };
-pub use svg_frame::{frame_svg, frame_svg_with_overlay, scene_svg};
+pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
 pub(crate) use tree::fixed;
 
 use crate::artwork::{Rgba, Scene};

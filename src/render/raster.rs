@@ -6,7 +6,7 @@
 //! (a convex combination of valid pixels is valid) and gives exactly what the SVG frame's
 //! arithmetic `feComposite` computes.
 
-use super::svg_frame::{scene_svg, side_svg};
+use super::svg_frame::{scene_svg, side_svg, Layer};
 use super::FrameOptions;
 use crate::artwork::Scene;
 use crate::error::{Error, Result};
@@ -32,13 +32,7 @@ pub(crate) fn render_side(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> 
 }
 
 fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
-    let (w, h) = opts.size;
-    let mut pixmap = Pixmap::new(w, h).ok_or_else(|| {
-        Error::input(
-            "<output>",
-            format!("cannot render a {w}×{h} image: the size must be positive and not huge"),
-        )
-    })?;
+    let mut pixmap = blank(opts)?;
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
         .map_err(|e| Error::internal(format!("crmorph wrote an SVG usvg cannot read: {e}")))?;
     resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
@@ -49,57 +43,71 @@ fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
 /// blended `(1 − t)·S + t·T` on premultiplied RGBA, over `opts.background` if any. At t = 0 and
 /// t = 1 only that side is rendered.
 pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<Pixmap> {
-    frame_pixmap_with_overlay(source, target, None, t, opts)
+    frame_pixmap_layers(&[Layer::Blend(source, target)], t, opts)
 }
 
-/// [`frame_pixmap`] with `overlay` rendered over the blend (source-over), before the
-/// background: the artwork that morphs as one shape.
-pub fn frame_pixmap_with_overlay(
-    source: &Scene,
-    target: &Scene,
-    overlay: Option<&Scene>,
-    t: f64,
-    opts: &FrameOptions,
-) -> Result<Pixmap> {
+/// The frame at `t` made of `layers`, bottom first (see [`super::svg_frame::frame_svg_layers`]):
+/// each [`Layer::Blend`] rendered and blended on its own, each [`Layer::Over`] rendered, and
+/// each composited source-over onto the layers below, then over the background. At t = 0
+/// (t = 1) a blend layer is its source (target) side alone.
+pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Result<Pixmap> {
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
-    let mut blended = if t == 0.0 {
-        render_scene(source, opts)?
-    } else if t == 1.0 {
-        render_scene(target, opts)?
-    } else {
-        let mut s = render_side(source, opts)?;
-        let d = render_side(target, opts)?;
-        blend_into(&mut s, &d, t);
-        s
+    let render = |layer: &Layer| -> Result<Pixmap> {
+        match *layer {
+            Layer::Blend(s, _) if t == 0.0 => render_scene(s, opts),
+            Layer::Blend(_, g) if t == 1.0 => render_scene(g, opts),
+            Layer::Blend(s, g) => {
+                let mut a = render_side(s, opts)?;
+                blend_into(&mut a, &render_side(g, opts)?, t);
+                Ok(a)
+            }
+            Layer::Over(o) => render_side(o, opts),
+        }
     };
-    if let Some(o) = overlay {
-        let top = render_side(o, opts)?;
-        blended.draw_pixmap(
-            0,
-            0,
-            top.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
-        );
+    let mut stack: Option<Pixmap> = None;
+    for layer in layers {
+        let top = render(layer)?;
+        match &mut stack {
+            None => stack = Some(top),
+            Some(below) => over(below, &top),
+        }
     }
+    let blended = match stack {
+        Some(p) => p,
+        None => blank(opts)?,
+    };
     match opts.background {
         None => Ok(blended),
         Some(bg) => {
-            let mut out = Pixmap::new(blended.width(), blended.height())
-                .ok_or_else(|| Error::internal("pixmap allocation failed"))?;
+            let mut out = blank(opts)?;
             out.fill(tiny_skia::Color::from_rgba8(bg.r, bg.g, bg.b, bg.a));
-            out.draw_pixmap(
-                0,
-                0,
-                blended.as_ref(),
-                &PixmapPaint::default(),
-                Transform::identity(),
-                None,
-            );
+            over(&mut out, &blended);
             Ok(out)
         }
     }
+}
+
+/// A transparent pixmap of the frame's size.
+fn blank(opts: &FrameOptions) -> Result<Pixmap> {
+    let (w, h) = opts.size;
+    Pixmap::new(w, h).ok_or_else(|| {
+        Error::input(
+            "<output>",
+            format!("cannot render a {w}×{h} image: the size must be positive and not huge"),
+        )
+    })
+}
+
+/// `below ← top over below` (source-over on premultiplied RGBA).
+fn over(below: &mut Pixmap, top: &Pixmap) {
+    below.draw_pixmap(
+        0,
+        0,
+        top.as_ref(),
+        &PixmapPaint::default(),
+        Transform::identity(),
+        None,
+    );
 }
 
 /// The frame at `t` encoded as PNG (straight alpha, 8-bit RGBA).
@@ -158,4 +166,65 @@ pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
         &mut pixmap.as_mut(),
     );
     encode_png(&pixmap)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::svg_frame::frame_svg_layers;
+
+    fn scene(body: &str) -> Scene {
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="30" height="30">{body}</svg>"#
+        );
+        Scene::from_svg("l.svg", &svg, "controls").unwrap()
+    }
+
+    #[test]
+    fn layers_stack_in_order_in_pixels_and_in_svg() {
+        let red = scene(r##"<rect width="30" height="30" fill="#ff0000"/>"##);
+        let blue = scene(r##"<rect x="5" y="5" width="20" height="20" fill="#0000ff"/>"##);
+        let white = scene(r##"<rect x="12" y="12" width="6" height="6" fill="#ffffff"/>"##);
+        let none = scene("");
+        // A detail blended in from nothing over a shape drawn as it is, over a blended ground.
+        let layers = [
+            Layer::Blend(&red, &red),
+            Layer::Over(&blue),
+            Layer::Blend(&none, &white),
+        ];
+        let opts = FrameOptions::for_scene(&red);
+        for t in [0.0, 0.5, 1.0] {
+            let px = frame_pixmap_layers(&layers, t, &opts).unwrap();
+            let rgba = |x, y| {
+                let p = px.pixel(x, y).unwrap();
+                [p.red(), p.green(), p.blue(), p.alpha()]
+            };
+            assert_eq!(rgba(1, 1), [255, 0, 0, 255], "t = {t}");
+            assert_eq!(rgba(7, 7), [0, 0, 255, 255], "t = {t}");
+            // The centre: blue under the detail at weight t.
+            let w = (255.0 * t).round() as u8;
+            let c = rgba(15, 15);
+            assert!(
+                c[0].abs_diff(w) <= 1 && c[2] == 255 && c[3] == 255,
+                "t = {t}: {c:?}"
+            );
+            // The SVG frame stacks the same way (one filter group per blend layer).
+            let svg = frame_svg_layers(&layers, t, &opts).unwrap();
+            let groups = svg.matches("filter=\"url(#crmorph-blend)\"").count();
+            assert_eq!(groups, if t == 0.5 { 2 } else { 0 });
+            let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
+            let mut from_svg = Pixmap::new(30, 30).unwrap();
+            resvg::render(&tree, Transform::identity(), &mut from_svg.as_mut());
+            let worst = from_svg
+                .data()
+                .iter()
+                .zip(px.data())
+                .map(|(a, b)| a.abs_diff(*b))
+                .max();
+            assert!(
+                worst <= Some(2),
+                "t = {t}: SVG and pixels differ by {worst:?}"
+            );
+        }
+    }
 }

@@ -21,6 +21,11 @@
 //! artwork of one side from being shifted into the view with the other. At t = 0 and t = 1 there
 //! is no filter at all: the frame is the one drawing, rendering exactly as the input.
 //!
+//! A frame may be a stack of such blends interleaved with unblended artwork ([`Layer`]):
+//! automatic mode's matched paths morph as one shape each and sit between the blended parts of
+//! the rest of the artwork painted below and above them, so the frame keeps the inputs' paint
+//! order. Every blend layer is its own filter group; all share the one filter and clip.
+//!
 //! Output is deterministic: elements in paint order, generated ids numbered in that order,
 //! coordinates rounded to 1/100 px at the output size. Warped (flattened) outlines are fitted
 //! with cubic curves within a tenth of a pixel (`render::fit`); the exact input at t = 0 and
@@ -46,19 +51,26 @@ pub fn scene_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
 /// The frame at `t` blending the warped `source` and `target` scenes (see the module docs for
 /// how). `t` is clamped to [0, 1]; at the ends the frame is [`scene_svg`] of that side.
 pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<String> {
-    frame_tree(source, target, None, t, opts, Mode::Still).to_svg_string()
+    frame_svg_layers(&[Layer::Blend(source, target)], t, opts)
 }
 
-/// [`frame_svg`] with `overlay` drawn over the blend, unblended: the artwork that morphs as one
-/// shape (automatic mode's matched paths) rather than as two cross-faded ones.
-pub fn frame_svg_with_overlay(
-    source: &Scene,
-    target: &Scene,
-    overlay: Option<&Scene>,
-    t: f64,
-    opts: &FrameOptions,
-) -> Result<String> {
-    frame_tree(source, target, overlay, t, opts, Mode::Still).to_svg_string()
+/// One layer of a frame. A frame is a stack of layers painted in order: the artwork that
+/// cross-fades and the artwork that morphs as one shape (automatic mode's matched paths)
+/// interleaved so that the frame keeps the input drawings' paint order.
+#[derive(Debug, Clone, Copy)]
+pub enum Layer<'a> {
+    /// The warped source and target of one part of the artwork, blended `(1 − t)·S + t·T`
+    /// on their own (their own filter group), then painted over the layers below.
+    Blend(&'a Scene, &'a Scene),
+    /// Artwork painted as it is over the layers below: paths that morph as one shape.
+    Over(&'a Scene),
+}
+
+/// The frame at `t` made of `layers`, bottom first: each [`Layer::Blend`] blended on its own
+/// as in [`frame_svg`] (one shared filter and clip), each [`Layer::Over`] drawn unblended. At
+/// t = 0 (t = 1) a blend layer is its source (target) side as it is.
+pub fn frame_svg_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Result<String> {
+    frame_tree(layers, t, opts, Mode::Still).to_svg_string()
 }
 
 /// How far (in output pixels) a curve fitted to warped artwork may stray from the warped
@@ -95,39 +107,35 @@ pub(crate) fn side_svg(scene: &Scene, opts: &FrameOptions) -> Result<String> {
 
 /// One drawing alone, as a tree.
 pub(crate) fn scene_tree(scene: &Scene, opts: &FrameOptions) -> Node {
-    scene_tree_with(scene, None, opts)
+    end_tree(&[Layer::Blend(scene, scene)], true, opts)
 }
 
-/// One drawing alone with an overlay over it, as a tree.
-fn scene_tree_with(scene: &Scene, overlay: Option<&Scene>, opts: &FrameOptions) -> Node {
+/// The layers at one end (`source` side or target side) as they are: the blend layers' input
+/// artwork exact, overlays fitted.
+fn end_tree(layers: &[Layer], source: bool, opts: &FrameOptions) -> Node {
     let mut doc = Document::new(opts, None, false);
     let mut defs = Builder::new();
     let mut body = Builder::new();
-    doc.side(scene, "a", &mut defs, &mut body);
-    if let Some(o) = overlay {
-        doc.fit = Some(FIT_PIXELS / opts.scale());
-        doc.side(o, "o", &mut defs, &mut body);
+    for layer in layers {
+        match *layer {
+            Layer::Blend(s, g) => {
+                doc.fit = None;
+                doc.side(if source { s } else { g }, "a", &mut defs, &mut body);
+            }
+            Layer::Over(o) => {
+                doc.fit = Some(FIT_PIXELS / opts.scale());
+                doc.side(o, "o", &mut defs, &mut body);
+            }
+        }
     }
     doc.finish(opts, defs, body)
 }
 
-/// The frame at `t` as a tree (see [`frame_svg`]; `Mode::Keyframe` blends at every t).
-pub(crate) fn frame_tree(
-    source: &Scene,
-    target: &Scene,
-    overlay: Option<&Scene>,
-    t: f64,
-    opts: &FrameOptions,
-    mode: Mode,
-) -> Node {
+/// The frame at `t` as a tree (see [`frame_svg_layers`]; `Mode::Keyframe` blends at every t).
+pub(crate) fn frame_tree(layers: &[Layer], t: f64, opts: &FrameOptions, mode: Mode) -> Node {
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
-    if mode == Mode::Still {
-        if t == 0.0 {
-            return scene_tree_with(source, overlay, opts);
-        }
-        if t == 1.0 {
-            return scene_tree_with(target, overlay, opts);
-        }
+    if mode == Mode::Still && (t == 0.0 || t == 1.0) {
+        return end_tree(layers, t == 0.0, opts);
     }
     let tol = match mode {
         Mode::Still => FIT_PIXELS,
@@ -150,74 +158,75 @@ pub(crate) fn frame_tree(
         w
     };
     let n = |x: f64| Value::num(x, NumFormat::Fixed(doc.decimals));
-    // The clip and filter definitions.
-    defs.open("clipPath", vec![("id", "crmorph-view".into())]);
-    defs.empty(
-        "rect",
-        vec![
-            ("x", n(lo.x)),
-            ("y", n(lo.y)),
-            ("width", n(w)),
-            ("height", n(h)),
-        ],
-    );
-    defs.close();
-    defs.open(
-        "filter",
-        vec![
-            ("id", "crmorph-blend".into()),
-            ("filterUnits", "userSpaceOnUse".into()),
-            ("x", n(lo.x)),
-            ("y", n(lo.y)),
-            ("width", n(w + shift)),
-            ("height", n(h)),
-            ("color-interpolation-filters", "sRGB".into()),
-        ],
-    );
-    defs.empty(
-        "feOffset",
-        vec![
-            ("in", "SourceGraphic".into()),
-            ("dx", n(-shift)),
-            ("dy", "0".into()),
-            ("result", "target".into()),
-        ],
-    );
-    defs.empty(
-        "feComposite",
-        vec![
-            ("in", "SourceGraphic".into()),
-            ("in2", "target".into()),
-            ("operator", "arithmetic".into()),
-            ("k1", "0".into()),
-            ("k2", Value::num(1.0 - t, NumFormat::Sig)),
-            ("k3", Value::num(t, NumFormat::Sig)),
-            ("k4", "0".into()),
-            ("x", n(lo.x)),
-            ("y", n(lo.y)),
-            ("width", n(w)),
-            ("height", n(h)),
-        ],
-    );
-    defs.close();
-    body.open("g", vec![("filter", "url(#crmorph-blend)".into())]);
-    body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
-    doc.side(source, "s", &mut defs, &mut body);
-    body.close();
-    body.open(
-        "g",
-        vec![(
-            "transform",
-            format!("translate({} 0)", fixed(shift, doc.decimals)).into(),
-        )],
-    );
-    body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
-    doc.side(target, "t", &mut defs, &mut body);
-    body.close();
-    body.close();
-    body.close();
-    if let Some(o) = overlay {
-        doc.side(o, "o", &mut defs, &mut body);
+    // The clip and filter definitions, shared by every blend layer.
+    if layers.iter().any(|l| matches!(l, Layer::Blend(..))) {
+        defs.open("clipPath", vec![("id", "crmorph-view".into())]);
+        defs.empty(
+            "rect",
+            vec![
+                ("x", n(lo.x)),
+                ("y", n(lo.y)),
+                ("width", n(w)),
+                ("height", n(h)),
+            ],
+        );
+        defs.close();
+        defs.open(
+            "filter",
+            vec![
+                ("id", "crmorph-blend".into()),
+                ("filterUnits", "userSpaceOnUse".into()),
+                ("x", n(lo.x)),
+                ("y", n(lo.y)),
+                ("width", n(w + shift)),
+                ("height", n(h)),
+                ("color-interpolation-filters", "sRGB".into()),
+            ],
+        );
+        defs.empty(
+            "feOffset",
+            vec![
+                ("in", "SourceGraphic".into()),
+                ("dx", n(-shift)),
+                ("dy", "0".into()),
+                ("result", "target".into()),
+            ],
+        );
+        defs.empty(
+            "feComposite",
+            vec![
+                ("in", "SourceGraphic".into()),
+                ("in2", "target".into()),
+                ("operator", "arithmetic".into()),
+                ("k1", "0".into()),
+                ("k2", Value::num(1.0 - t, NumFormat::Sig)),
+                ("k3", Value::num(t, NumFormat::Sig)),
+                ("k4", "0".into()),
+                ("x", n(lo.x)),
+                ("y", n(lo.y)),
+                ("width", n(w)),
+                ("height", n(h)),
+            ],
+        );
+        defs.close();
+    }
+    let shifted = format!("translate({} 0)", fixed(shift, doc.decimals));
+    for layer in layers {
+        match *layer {
+            Layer::Blend(source, target) => {
+                body.open("g", vec![("filter", "url(#crmorph-blend)".into())]);
+                body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
+                doc.side(source, "s", &mut defs, &mut body);
+                body.close();
+                body.open("g", vec![("transform", shifted.clone().into())]);
+                body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
+                doc.side(target, "t", &mut defs, &mut body);
+                body.close();
+                body.close();
+                body.close();
+            }
+            Layer::Over(o) => doc.side(o, "o", &mut defs, &mut body),
+        }
     }
     doc.finish(opts, defs, body)
 }
@@ -391,7 +400,7 @@ impl Document {
         match &p.fill {
             Some(f) => {
                 a.push(("fill", self.paint(&f.paint, to_local, prefix, defs)));
-                if f.opacity != 1.0 {
+                if f.opacity != 1.0 || self.uniform {
                     a.push(("fill-opacity", Value::num(f.opacity, NumFormat::Sig)));
                 }
                 if f.even_odd {
@@ -426,7 +435,7 @@ impl Document {
             NumFormat::Fixed(self.decimals + 2)
         };
         a.push(("stroke-width", Value::num(s.width, format)));
-        if s.opacity != 1.0 {
+        if s.opacity != 1.0 || self.uniform {
             a.push(("stroke-opacity", Value::num(s.opacity, NumFormat::Sig)));
         }
         match s.cap {
@@ -440,7 +449,7 @@ impl Document {
             LineJoin::Round => a.push(("stroke-linejoin", "round".into())),
             LineJoin::Bevel => a.push(("stroke-linejoin", "bevel".into())),
         }
-        if s.miter_limit != 4.0 {
+        if s.miter_limit != 4.0 || self.uniform {
             a.push((
                 "stroke-miterlimit",
                 Value::num(s.miter_limit, NumFormat::Sig),
@@ -503,7 +512,7 @@ impl Document {
                     ("fx", s(focal.x)),
                     ("fy", s(focal.y)),
                 ]);
-                if focal_radius != 0.0 {
+                if focal_radius != 0.0 || self.uniform {
                     a.push(("fr", s(focal_radius)));
                 }
                 "radialGradient"
@@ -523,7 +532,7 @@ impl Document {
                 ("offset", s(st.offset)),
                 ("stop-color", hex(st.color).into()),
             ];
-            if st.opacity != 1.0 {
+            if st.opacity != 1.0 || self.uniform {
                 sa.push(("stop-opacity", s(st.opacity)));
             }
             defs.empty("stop", sa);

@@ -318,3 +318,205 @@ fn matched_contours_keep_their_vertex_correspondence() {
         }
     }
 }
+
+/// A pair's morph with its matched paths morphing as one shape (at 192 px), and the indices of
+/// the source items that morph.
+fn auto_morphing(name: &str) -> (Morph, Vec<usize>) {
+    let dir = fixtures().join("icons").join(name);
+    let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
+    let scene = |p: &Path| {
+        Scene::from_svg(
+            &p.display().to_string(),
+            &std::fs::read_to_string(p).unwrap(),
+            "controls",
+        )
+        .unwrap()
+    };
+    let (ss, ts) = (scene(&s), scene(&t));
+    let (c, report, _, _) =
+        build_auto(&open(&s), &open(&t), &ss, &ts, &MorphOptions::default()).unwrap();
+    let m = &c.meshes;
+    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+    let mut frame = FrameOptions::for_scene(&ss);
+    frame.size = (192, 192);
+    let items = report.morphing.iter().map(|p| p.source_item).collect();
+    let morph =
+        Morph::with_morphing_paths(c.meshes.clone(), interp, &ss, &ts, frame, report.morphing)
+            .unwrap();
+    (morph, items)
+}
+
+/// The share of pixels whose channels differ by more than 8 of 255.
+fn share_off(a: &tiny_skia::Pixmap, b: &tiny_skia::Pixmap) -> f64 {
+    let off = a
+        .pixels()
+        .iter()
+        .zip(b.pixels())
+        .filter(|(p, q)| {
+            p.red().abs_diff(q.red()) > 8
+                || p.green().abs_diff(q.green()) > 8
+                || p.blue().abs_diff(q.blue()) > 8
+                || p.alpha().abs_diff(q.alpha()) > 8
+        })
+        .count();
+    off as f64 / a.pixels().len() as f64
+}
+
+/// The share of pixels of `a` with a channel more than 8 of 255 outside that channel's range
+/// over the 3×3 neighbourhood of the pixel in `b`: differences that moving an edge by less
+/// than a pixel (a flattening or curve-fitting tolerance) cannot explain, such as a region
+/// changing colour.
+fn share_beyond_a_pixel(a: &tiny_skia::Pixmap, b: &tiny_skia::Pixmap) -> f64 {
+    let (w, h) = (a.width() as i64, a.height() as i64);
+    let channels = |p: tiny_skia::PremultipliedColorU8| [p.red(), p.green(), p.blue(), p.alpha()];
+    let mut off = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let p = channels(a.pixels()[(y * w + x) as usize]);
+            let (mut lo, mut hi) = ([255u8; 4], [0u8; 4]);
+            for (u, v) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (x + dx, y + dy))) {
+                if (0..w).contains(&u) && (0..h).contains(&v) {
+                    let q = channels(b.pixels()[(v * w + u) as usize]);
+                    for c in 0..4 {
+                        lo[c] = lo[c].min(q[c]);
+                        hi[c] = hi[c].max(q[c]);
+                    }
+                }
+            }
+            if (0..4).any(|c| p[c] as i32 + 8 < lo[c] as i32 || p[c] as i32 > hi[c] as i32 + 8) {
+                off += 1;
+            }
+        }
+    }
+    off as f64 / (w * h) as f64
+}
+
+/// An SVG document rendered with resvg at `like`'s size.
+fn render_svg(svg: &str, like: &tiny_skia::Pixmap) -> tiny_skia::Pixmap {
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default()).unwrap();
+    let mut out = tiny_skia::Pixmap::new(like.width(), like.height()).unwrap();
+    let sx = like.width() as f32 / tree.size().width();
+    let sy = like.height() as f32 / tree.size().height();
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(sx, sy),
+        &mut out.as_mut(),
+    );
+    out
+}
+
+#[test]
+fn in_between_frames_keep_the_inputs_paint_order() {
+    // The badge's white minus lies over its body; the body morphs as one shape, the minus
+    // (whose partner has two dots) cross-fades. Near the ends the frame is the input drawing:
+    // the body must not cover the minus.
+    let (morph, items) = auto_morphing("badge-minus-to-dots");
+    assert_eq!(items, [0], "the body morphs, the detail above it does not");
+    for name in ["badge-minus-to-dots", "ok-to-rating", "lock-to-unlock"] {
+        let (morph, _) = auto_morphing(name);
+        for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
+            let (a, b) = (
+                morph.pixmap_at(near).unwrap(),
+                morph.pixmap_at(end).unwrap(),
+            );
+            // Strictly, edges differ by the flattening tolerances (as they do without
+            // morphing paths); nothing else may.
+            let off = share_beyond_a_pixel(&a, &b);
+            eprintln!(
+                "{name}: t = {near}: {:.3} % pixels off t = {end} by more than a pixel's edge \
+                 shift ({:.3} % strictly)",
+                100.0 * off,
+                100.0 * share_off(&a, &b)
+            );
+            assert!(off <= 0.005, "{name}: t = {near} pops: {off}");
+        }
+        // The SVG frame (layers as filter groups) shows what the raster frame shows.
+        for t in [0.3, 0.5] {
+            let px = morph.pixmap_at(t).unwrap();
+            let off = share_off(&render_svg(&morph.svg_at(t).unwrap(), &px), &px);
+            eprintln!(
+                "{name}: t = {t}: SVG vs raster {:.3} % pixels off",
+                100.0 * off
+            );
+            assert!(
+                off <= 0.005,
+                "{name}: SVG and raster frames differ at {t}: {off}"
+            );
+        }
+    }
+    // Mid-morph the minus is still on top: the badge's centre stays light.
+    let q = morph
+        .pixmap_at(0.1)
+        .unwrap()
+        .pixel(96, 96)
+        .unwrap()
+        .demultiply();
+    assert!(q.red() > 200 && q.green() > 200 && q.blue() > 200, "{q:?}");
+    // The animated SVG stacks the same layers in every keyframe: the body, then the detail's
+    // own blend group over it.
+    let tl = crmorph::export::Timeline {
+        frames: 9,
+        ..Default::default()
+    };
+    let anim = morph.animated_svg(&tl).unwrap();
+    usvg::Tree::from_str(&anim, &usvg::Options::default()).unwrap();
+    assert_eq!(anim.matches("filter=\"url(#crmorph-blend)\"").count(), 1);
+    assert_eq!(anim, morph.animated_svg(&tl).unwrap(), "deterministic");
+}
+
+#[test]
+fn gradients_interpolate_on_paths_that_morph_as_one_shape() {
+    let (morph, items) = auto_morphing("gradient-badge");
+    assert_eq!(
+        items,
+        [0, 1],
+        "body and highlight morph, both with gradients"
+    );
+    let svg = morph.svg_at(0.5).unwrap();
+    assert!(svg.contains("<linearGradient") && svg.contains("<radialGradient"));
+    // Unblended: the gradients are painted once, not cross-faded (no blend filter group).
+    assert!(!svg.contains("crmorph-blend"), "nothing left to blend");
+    for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
+        let (a, b) = (
+            morph.pixmap_at(near).unwrap(),
+            morph.pixmap_at(end).unwrap(),
+        );
+        let off = share_beyond_a_pixel(&a, &b);
+        eprintln!(
+            "gradient-badge: t = {near}: {:.3} % pixels off t = {end} beyond an edge shift",
+            100.0 * off
+        );
+        assert!(off <= 0.005, "t = {near} pops: {off}");
+    }
+    for t in [0.25, 0.5, 0.75] {
+        let px = morph.pixmap_at(t).unwrap();
+        let off = share_off(&render_svg(&morph.svg_at(t).unwrap(), &px), &px);
+        eprintln!(
+            "gradient-badge: t = {t}: SVG vs raster {:.3} % pixels off",
+            100.0 * off
+        );
+        assert!(off <= 0.005, "SVG and raster frames differ at {t}: {off}");
+    }
+    // Mid-morph the body's gradient still runs across it: its top-left and bottom-right
+    // differ in colour, and both differ from either end's colours there.
+    let mid = morph.pixmap_at(0.5).unwrap();
+    let rgb = |p: &tiny_skia::Pixmap, x: u32, y: u32| {
+        let q = p.pixel(x, y).unwrap().demultiply();
+        [q.red(), q.green(), q.blue()]
+    };
+    let (tl, br) = (rgb(&mid, 56, 56), rgb(&mid, 136, 136));
+    eprintln!("gradient-badge at t = 0.5: top left {tl:?}, bottom right {br:?}");
+    let far = |a: [u8; 3], b: [u8; 3]| a.iter().zip(b).any(|(x, y)| x.abs_diff(y) > 30);
+    assert!(far(tl, br), "the gradient runs across the body");
+    let anim = morph
+        .animated_svg(&crmorph::export::Timeline {
+            frames: 12,
+            ..Default::default()
+        })
+        .unwrap();
+    usvg::Tree::from_str(&anim, &usvg::Options::default()).unwrap();
+    assert!(
+        anim.contains("attributeName=\"stop-color\""),
+        "stops animate"
+    );
+}
