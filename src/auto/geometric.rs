@@ -7,14 +7,23 @@
 //! Gradients interpolate too (module `paint`): their stops, and their geometry carried along by
 //! the outline's motion.
 //!
+//! A hole with no partner on the other side closes (or opens) inside the morphing path: its
+//! outline — its seed feature curve when it has one, else its points carried by the mesh — is
+//! shrunk about its centre by `1 − t` (or grown by `t` for a hole of the target), so at t = 1
+//! it is a point and nothing pops. The mesh keeps it inside the outline (the outline is a
+//! feature curve, which no triangle crosses), so the hole never leaks out of the shape. Why
+//! not a fade: a fading hole is a translucent patch mid-morph; a closing one keeps the shape
+//! crisp, which is what a designer animates by hand (and what shape tweens cannot do, since
+//! they need equal contour counts).
+//!
 //! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour
 //! or a gradient of the same kind), no dashes, no shaped pen, and no ancestor group with
 //! opacity or a clip. Anything else keeps the warp-and-blend of the rest of the artwork.
 
 mod paint;
 
-use super::contours::Contour;
-use crate::artwork::{Fill, Group, Item, Paint, PathItem, Scene, Stroke};
+use super::contours::{Contour, ContourKind};
+use crate::artwork::{Fill, Group, Item, Location, Paint, PathItem, PointLocator, Scene, Stroke};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use kurbo::{Affine, BezPath};
@@ -38,6 +47,48 @@ pub struct MorphingPath {
     source_root: Affine,
     /// The same for the target scene.
     target_root: Affine,
+    /// Holes closing (source holes without a partner) or opening (target holes without one).
+    holes: Vec<ShrinkingHole>,
+}
+
+/// A hole of a morphing path that has no partner: it closes to a point (a source hole) or
+/// opens from one (a target hole) about its centre (module docs).
+#[derive(Debug, Clone, PartialEq)]
+struct ShrinkingHole {
+    outline: HoleOutline,
+    /// A source hole (size `1 − t`) rather than a target hole (size `t`).
+    closing: bool,
+}
+
+/// Where a shrinking hole's outline comes from in a frame.
+#[derive(Debug, Clone, PartialEq)]
+enum HoleOutline {
+    /// A feature curve of the meshes (a hole matched to a seed spot).
+    Curve(usize),
+    /// Points bound to the source mesh (closing) or the target mesh (opening).
+    Bound(Vec<Location>),
+}
+
+impl ShrinkingHole {
+    /// The hole's outline at `t` in the frame's mesh `vertices`, sized about its centre.
+    fn at(&self, meshes: &CompatibleMeshes, vertices: &[Point], t: f64) -> Vec<Point> {
+        let pts: Vec<Point> = match &self.outline {
+            HoleOutline::Curve(c) => meshes.curves[*c]
+                .vertices
+                .iter()
+                .map(|&v| vertices[v as usize])
+                .collect(),
+            HoleOutline::Bound(locs) => locs
+                .iter()
+                .map(|l| l.place(&meshes.triangles, vertices))
+                .collect(),
+        };
+        let size = if self.closing { 1.0 - t } else { t };
+        let centre = crate::geometry::centroid(&pts);
+        pts.into_iter()
+            .map(|p| centre + (p - centre) * size)
+            .collect()
+    }
 }
 
 impl MorphingPath {
@@ -58,6 +109,20 @@ impl MorphingPath {
             if curve.closed {
                 path.close_path();
             }
+        }
+        // Every frame has the same subpaths (the animated SVG animates one `d`); a hole of
+        // size 0 paints nothing.
+        for hole in &self.holes {
+            let pts = hole.at(meshes, vertices, t);
+            for (k, p) in pts.iter().enumerate() {
+                let q = kurbo::Point::new(p.x, p.y);
+                if k == 0 {
+                    path.move_to(q);
+                } else {
+                    path.line_to(q);
+                }
+            }
+            path.close_path();
         }
         let lerp = |a: f64, b: f64| a + (b - a) * t;
         // Gradients ride with the outline: each side's by the affine map that best carries
@@ -184,27 +249,70 @@ pub(crate) fn morphing_paths(
             .iter()
             .position(|c| c.name == format!("feature-{name}"))
     };
+    let locators = (
+        PointLocator::new(&meshes.source, &meshes.triangles).ok(),
+        PointLocator::new(&meshes.target, &meshes.triangles).ok(),
+    );
+    // A hole without a partner: its seed curve, or its points bound in its own mesh.
+    let lone_hole = |c: &Contour, pair: Option<&(String, usize, usize)>, closing: bool| {
+        if c.kind != ContourKind::Hole {
+            return None;
+        }
+        let outline = match pair {
+            Some(p) => HoleOutline::Curve(curve_of(&p.0)?),
+            None => {
+                let locator = if closing { &locators.0 } else { &locators.1 };
+                HoleOutline::Bound(
+                    c.points
+                        .iter()
+                        .map(|&q| locator.as_ref().map(|l| l.locate(q)))
+                        .collect::<Option<_>>()?,
+                )
+            }
+        };
+        Some(ShrinkingHole { outline, closing })
+    };
     let mut out = Vec::new();
     let mut items: Vec<usize> = cs.iter().map(|c| c.path).collect();
     items.sort_unstable();
     items.dedup();
-    for i in items {
-        let mine: Vec<usize> = (0..cs.len()).filter(|&k| cs[k].path == i).collect();
-        let partners: Option<Vec<(usize, usize)>> = mine
-            .iter()
-            .map(|&k| {
-                pairs
-                    .iter()
-                    .find(|p| p.1 == k && p.2 != usize::MAX)
-                    .and_then(|p| Some((p.2, curve_of(&p.0)?)))
-            })
-            .collect();
-        let Some(partners) = partners else { continue };
+    'paths: for i in items {
+        // Source contours: a real partner (its curve), or a lone hole that will close.
+        let mut partners: Vec<(usize, usize)> = Vec::new();
+        let mut holes = Vec::new();
+        for k in (0..cs.len()).filter(|&k| cs[k].path == i) {
+            let pair = pairs.iter().find(|p| p.1 == k);
+            match pair {
+                Some(p) if p.2 != usize::MAX => match curve_of(&p.0) {
+                    Some(c) => partners.push((p.2, c)),
+                    None => match lone_hole(&cs[k], None, true) {
+                        Some(h) => holes.push(h),
+                        None => continue 'paths,
+                    },
+                },
+                _ => match lone_hole(&cs[k], pair, true) {
+                    Some(h) => holes.push(h),
+                    None => continue 'paths,
+                },
+            }
+        }
         let Some(j) = partners.first().map(|p| ct[p.0].path) else {
             continue;
         };
-        let theirs = (0..ct.len()).filter(|&k| ct[k].path == j).count();
-        let one_target = partners.iter().all(|p| ct[p.0].path == j) && theirs == partners.len();
+        if partners.iter().any(|p| ct[p.0].path != j) {
+            continue;
+        }
+        // Target contours of path j: a partner, or a lone hole that will open.
+        for k in (0..ct.len()).filter(|&k| ct[k].path == j) {
+            if partners.iter().any(|p| p.0 == k) {
+                continue;
+            }
+            let seed = pairs.iter().find(|p| p.2 == k && p.1 == usize::MAX);
+            match lone_hole(&ct[k], seed, false) {
+                Some(h) => holes.push(h),
+                None => continue 'paths,
+            }
+        }
         let (Some(Some(a)), Some(Some(b))) = (ps.get(i), pt.get(j)) else {
             continue;
         };
@@ -219,7 +327,7 @@ pub(crate) fn morphing_paths(
             a.stroke.as_ref().map(|s| &s.paint),
             b.stroke.as_ref().map(|s| &s.paint),
         );
-        if one_target && same_paint {
+        if same_paint {
             out.push(MorphingPath {
                 source_item: i,
                 target_item: j,
@@ -228,6 +336,7 @@ pub(crate) fn morphing_paths(
                 target: b.clone(),
                 source_root: source_scene.root_transform,
                 target_root: target_scene.root_transform,
+                holes,
             });
         }
     }
@@ -289,6 +398,7 @@ mod tests {
             target: p,
             source_root: Affine::IDENTITY,
             target_root: Affine::IDENTITY,
+            holes: Vec::new(),
         }
     }
 

@@ -520,3 +520,89 @@ fn gradients_interpolate_on_paths_that_morph_as_one_shape() {
         "stops animate"
     );
 }
+
+/// The subpaths of a polygonal path (move-to / line-to / close).
+fn subpaths(path: &kurbo::BezPath) -> Vec<Vec<Point>> {
+    let mut out: Vec<Vec<Point>> = Vec::new();
+    for el in path.elements() {
+        match *el {
+            kurbo::PathEl::MoveTo(p) => out.push(vec![Point::new(p.x, p.y)]),
+            kurbo::PathEl::LineTo(p) => {
+                if let Some(last) = out.last_mut() {
+                    last.push(Point::new(p.x, p.y));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// "e" → "c": the counter has no partner in the "c" (no contour tween can pair 2 contours with
+/// 1). It closes inside the glyph, which morphs as one shape: the counter's area shrinks
+/// steadily to nothing, it stays inside the glyph's outline in every frame, and the mid frame is
+/// crisp (no half-faded counter).
+#[test]
+fn a_counter_closes_smoothly_into_a_glyph_without_one() {
+    let dir = fixtures().join("icons").join("glyph-e-to-c");
+    let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
+    let scene = |p: &Path| {
+        Scene::from_svg(
+            &p.display().to_string(),
+            &std::fs::read_to_string(p).unwrap(),
+            "controls",
+        )
+        .unwrap()
+    };
+    let (ss, ts) = (scene(&s), scene(&t));
+    let (c, report, _, _) =
+        build_auto(&open(&s), &open(&t), &ss, &ts, &MorphOptions::default()).unwrap();
+    assert_eq!(report.morphing.len(), 1, "{report}");
+    let m = &c.meshes;
+    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+    let glyph = &report.morphing[0];
+    let mut areas = Vec::new();
+    for k in 0..=20 {
+        let t = k as f64 / 20.0;
+        let v = interp.at_vec(t);
+        let parts = subpaths(&glyph.at(m, &v, t).path);
+        assert_eq!(parts.len(), 2, "outline and counter");
+        let (outline, counter) = (&parts[0], &parts[1]);
+        let area = polygon_area(counter).abs();
+        if area > 0.0 {
+            for p in counter {
+                assert!(
+                    crmorph::geometry::point_in_polygon(*p, outline),
+                    "t = {t}: the counter leaves the glyph at {p}"
+                );
+            }
+        }
+        areas.push(area / polygon_area(outline).abs());
+    }
+    eprintln!("counter area / glyph area: {areas:.4?}");
+    assert!(areas[0] > 0.05, "the e's counter is there at t = 0");
+    assert!(areas[20] < 1e-12, "and gone at t = 1");
+    assert!(
+        areas.windows(2).all(|w| w[1] < w[0]),
+        "it shrinks steadily: {areas:?}"
+    );
+    let mut frame = FrameOptions::for_scene(&ss);
+    frame.size = (192, 192);
+    let morph = Morph::with_morphing_paths(
+        c.meshes.clone(),
+        interp,
+        &ss,
+        &ts,
+        frame,
+        report.morphing.clone(),
+    )
+    .unwrap();
+    let mid = morph.pixmap_at(0.5).unwrap();
+    let translucent = mid
+        .pixels()
+        .iter()
+        .filter(|q| q.alpha() > 30 && q.alpha() < 225)
+        .count() as f64
+        / mid.pixels().len() as f64;
+    assert!(translucent < 0.02, "{translucent}");
+}
