@@ -495,11 +495,14 @@ fn build_morph(
     }
     opts.background = look.background;
     // Paths morphing as one shape follow the plain interpolation's mesh; with the disc
-    // method only (the baselines are for comparing the mesh motion).
-    let paths = if method == MethodArg::Disc {
-        paths
-    } else {
+    // method only (the baselines are for comparing the mesh motion). In marked-up drawings
+    // they are the artwork paths that are their own boundary or feature curve.
+    let paths = if method != MethodArg::Disc {
         Vec::new()
+    } else if paths.is_empty() {
+        crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c)
+    } else {
+        paths
     };
     Ok(Morph::with_morphing_paths(
         c.meshes, motion, &ss, &ts, opts, paths,

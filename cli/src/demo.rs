@@ -54,7 +54,9 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
         b: 255,
         a: 255,
     });
-    let morph = Morph::new(c.meshes, interp, &ss, &ts, frame)?;
+    // The gourd's skin and leaf are their own boundary and features: they morph as one shape.
+    let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
+    let morph = Morph::with_morphing_paths(c.meshes, interp, &ss, &ts, frame, paths)?;
     let inverted: usize = morph
         .vertex_frames(&TIMELINE)
         .iter()

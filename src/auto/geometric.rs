@@ -316,18 +316,7 @@ pub(crate) fn morphing_paths(
         let (Some(Some(a)), Some(Some(b))) = (ps.get(i), pt.get(j)) else {
             continue;
         };
-        let paints = |x: Option<&Paint>, y: Option<&Paint>| match (x, y) {
-            (Some(x), Some(y)) => compatible(x, y),
-            (x, y) => x.is_none() && y.is_none(),
-        };
-        let same_paint = paints(
-            a.fill.as_ref().map(|f| &f.paint),
-            b.fill.as_ref().map(|f| &f.paint),
-        ) && paints(
-            a.stroke.as_ref().map(|s| &s.paint),
-            b.stroke.as_ref().map(|s| &s.paint),
-        );
-        if same_paint {
+        if paints_interpolate(a, b) {
             out.push(MorphingPath {
                 source_item: i,
                 target_item: j,
@@ -337,6 +326,71 @@ pub(crate) fn morphing_paths(
                 source_root: source_scene.root_transform,
                 target_root: target_scene.root_transform,
                 holes,
+            });
+        }
+    }
+    in_paint_order(out)
+}
+
+/// Whether two paths' paints can interpolate: fill with fill and stroke with stroke, each pair
+/// colours or compatible gradients ([`paint`]).
+fn paints_interpolate(a: &PathItem, b: &PathItem) -> bool {
+    let paints = |x: Option<&Paint>, y: Option<&Paint>| match (x, y) {
+        (Some(x), Some(y)) => compatible(x, y),
+        (x, y) => x.is_none() && y.is_none(),
+    };
+    paints(
+        a.fill.as_ref().map(|f| &f.paint),
+        b.fill.as_ref().map(|f| &f.paint),
+    ) && paints(
+        a.stroke.as_ref().map(|s| &s.paint),
+        b.stroke.as_ref().map(|s| &s.paint),
+    )
+}
+
+/// The one plain, single-subpath item of `paths` with element id `id`, if exactly one has it.
+fn item_with_id<'a>(paths: &'a [Option<PathItem>], id: &str) -> Option<(usize, &'a PathItem)> {
+    let mut found = paths
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| p.as_ref().filter(|p| p.id == id).map(|p| (i, p)));
+    let (i, p) = found.next()?;
+    let subpaths = p
+        .path
+        .elements()
+        .iter()
+        .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+        .count();
+    (found.next().is_none() && subpaths == 1).then_some((i, p))
+}
+
+/// Marked-up drawings (issue #6, item 3): an artwork path that is itself the boundary or a
+/// feature curve — the same element id in both drawings, a single subpath, plain paint that
+/// interpolates — morphs as one shape along that curve, like automatic mode's matched paths.
+/// `compatible.pairs[k].id` is the element id of `compatible.meshes.curves[k]`.
+pub fn named_morphing_paths(
+    source_scene: &Scene,
+    target_scene: &Scene,
+    compatible: &crate::compatible::Compatible,
+) -> Vec<MorphingPath> {
+    let (ps, pt) = (plain_paths(source_scene), plain_paths(target_scene));
+    let mut out = Vec::new();
+    for (k, pair) in compatible.pairs.iter().enumerate() {
+        let (Some((i, a)), Some((j, b))) =
+            (item_with_id(&ps, &pair.id), item_with_id(&pt, &pair.id))
+        else {
+            continue;
+        };
+        if k < compatible.meshes.curves.len() && paints_interpolate(a, b) {
+            out.push(MorphingPath {
+                source_item: i,
+                target_item: j,
+                curves: vec![k],
+                source: a.clone(),
+                target: b.clone(),
+                source_root: source_scene.root_transform,
+                target_root: target_scene.root_transform,
+                holes: Vec::new(),
             });
         }
     }

@@ -606,3 +606,72 @@ fn a_counter_closes_smoothly_into_a_glyph_without_one() {
         / mid.pixels().len() as f64;
     assert!(translucent < 0.02, "{translucent}");
 }
+
+/// Marked-up drawings: an artwork path that is its own boundary or feature curve in both files
+/// morphs as one shape too. Over the marked fixtures: which paths do, frames near the ends are
+/// the input drawings (no pop, paint order kept), SVG and raster frames agree, and the
+/// leaf's boundary colour at t = ½ is an Oklab mix rather than a cross-fade.
+#[test]
+fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
+    use crmorph::auto::geometric::named_morphing_paths;
+    let mut total = 0;
+    for name in ["gourd", "leaf-to-butterfly", "star-to-blob", "u-to-s", "dancer"] {
+        let dir = fixtures().join(name);
+        let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
+        let (ds, dt) = (open(&s), open(&t));
+        let scene = |p: &Path| {
+            Scene::from_svg_in(
+                &p.display().to_string(),
+                &std::fs::read_to_string(p).unwrap(),
+                "controls",
+                p.parent(),
+            )
+            .unwrap()
+        };
+        let (ss, ts) = (scene(&s), scene(&t));
+        let c = crmorph::compatible::build(&ds, &dt, &MorphOptions::default()).unwrap();
+        let paths = named_morphing_paths(&ss, &ts, &c);
+        let ids: Vec<String> = paths
+            .iter()
+            .map(|p| c.pairs[p.curves[0]].id.clone())
+            .collect();
+        eprintln!("{name}: {ids:?} morph as one shape");
+        total += paths.len();
+        let m = &c.meshes;
+        let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
+        let mut frame = FrameOptions::for_scene(&ss);
+        frame.size = (192, 192);
+        let morph =
+            Morph::with_morphing_paths(c.meshes.clone(), interp, &ss, &ts, frame, paths).unwrap();
+        for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
+            let (a, b) = (
+                morph.pixmap_at(near).unwrap(),
+                morph.pixmap_at(end).unwrap(),
+            );
+            let off = share_beyond_a_pixel(&a, &b);
+            assert!(off <= 0.005, "{name}: t = {near} pops: {off}");
+        }
+        let px = morph.pixmap_at(0.5).unwrap();
+        let off = share_off(&render_svg(&morph.svg_at(0.5).unwrap(), &px), &px);
+        assert!(off <= 0.005, "{name}: SVG and raster differ: {off}");
+        if name == "star-to-blob" {
+            assert_eq!(ids, ["boundary"]);
+            // The star's yellow and the blob's red-orange meet in Oklab at t = ½.
+            let fill = |sc: &Scene| match &sc.items()[0] {
+                crmorph::artwork::Item::Path(p) => match &p.fill.as_ref().unwrap().paint {
+                    crmorph::artwork::Paint::Color(c) => *c,
+                    other => panic!("{other:?}"),
+                },
+                other => panic!("{other:?}"),
+            };
+            let want = crmorph::color::mix(fill(&ss), fill(&ts), 0.5);
+            let q = px.pixel(96, 96).unwrap().demultiply();
+            let near = |a: u8, b: u8| a.abs_diff(b) <= 2;
+            assert!(
+                near(q.red(), want.r) && near(q.green(), want.g) && near(q.blue(), want.b),
+                "{q:?} vs {want:?}"
+            );
+        }
+    }
+    assert!(total >= 5, "marked fixtures' own boundaries and features morph as one");
+}
