@@ -39,6 +39,10 @@ pub struct Compatible {
     pub stats: MappingStats,
     /// The tolerances used (relative to the larger of the two drawings).
     pub tolerances: Tolerances,
+    /// The triangles whose area the disc method's area rule keeps (`rigid::area`): `None` for
+    /// the whole mesh (the boundary is the shape); automatic mode, whose boundary is a padded
+    /// frame, sets the regions filled by the matched outlines.
+    pub area_region: Option<Vec<[u32; 3]>>,
 }
 
 /// Tolerances common to both drawings: relative to the larger one.
@@ -94,5 +98,6 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
         pairs,
         stats,
         tolerances: tol,
+        area_region: None,
     })
 }

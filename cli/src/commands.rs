@@ -378,13 +378,17 @@ fn scene(d: &Drawing) -> Result<Scene> {
     )?)
 }
 
-/// The interpolator of `method` for the meshes, its errors naming the two inputs.
-fn interpolator(
-    inputs: &Inputs,
-    method: MethodArg,
-    m: &crmorph::CompatibleMeshes,
-) -> Result<Interpolator> {
-    Interpolator::new(method.method(), &m.source, &m.target, &m.triangles).map_err(|e| {
+/// The interpolator of `method` for the meshes (the disc method keeping the area of
+/// `c.area_region` when set), its errors naming the two inputs.
+fn interpolator(inputs: &Inputs, method: MethodArg, c: &Compatible) -> Result<Interpolator> {
+    let m = &c.meshes;
+    let built = match (&c.area_region, method) {
+        (Some(region), MethodArg::Disc) => {
+            Interpolator::with_area_region(&m.source, &m.target, &m.triangles, region)
+        }
+        _ => Interpolator::new(method.method(), &m.source, &m.target, &m.triangles),
+    };
+    built.map_err(|e| {
         e.in_file(format!(
             "{} → {}",
             inputs.source.display(),
@@ -443,7 +447,7 @@ fn motion(
     c: &Compatible,
 ) -> Result<Motion> {
     if steering.poses.is_empty() && !always_skeleton {
-        return Ok(interpolator(inputs, method, &c.meshes)?.into());
+        return Ok(interpolator(inputs, method, c)?.into());
     }
     if method != MethodArg::Disc {
         return Err(Usage("--pose steers the disc method only; leave out --method".into()).into());

@@ -166,7 +166,7 @@ pub fn build_auto(
                 let Some(name) = named_feature(&e, &s) else {
                     return Err(e);
                 };
-                drop_feature(&mut s, &mut t, &mut report, &name, &e);
+                drop_feature(&mut s, &mut t, &mut report, (&cs, &ct), &name, &e);
             }
         }
     }
@@ -199,7 +199,8 @@ pub fn build_auto(
             Ok(c)
         });
         match built {
-            Ok(c) => {
+            Ok(mut c) => {
+                c.area_region = covered_region(&c.meshes, &report, (&cs, &ct));
                 report.morphing = geometric::morphing_paths(
                     source_scene,
                     target_scene,
@@ -215,10 +216,52 @@ pub fn build_auto(
                     return Err(e);
                 }
                 let name = named_feature(&e, &s).unwrap_or_else(|| smallest(&s));
-                drop_feature(&mut s, &mut t, &mut report, &name, &e);
+                drop_feature(&mut s, &mut t, &mut report, (&cs, &ct), &name, &e);
             }
         }
     }
+}
+
+/// The triangles inside any closed outline or stroke feature (holes ignored) in the source mesh: the
+/// region the matched artwork covers, whose area the disc method keeps
+/// ([`Compatible::area_region`]). Holes are left in because a hole closing or opening changes
+/// the artwork's area without any part of it growing: a ring becoming a disc keeps its outer
+/// circle. `None` without closed outline features.
+fn covered_region(
+    m: &crate::mesh::CompatibleMeshes,
+    report: &AutoReport,
+    (cs, ct): (&[Contour], &[Contour]),
+) -> Option<Vec<[u32; 3]>> {
+    let outline = |name: &str| {
+        report.features.iter().any(|f| {
+            format!("feature-{}", f.0) == name && {
+                let c = if f.1 != usize::MAX {
+                    cs.get(f.1)
+                } else {
+                    ct.get(f.2)
+                };
+                c.is_some_and(|c| c.kind != contours::ContourKind::Hole)
+            }
+        })
+    };
+    let rings: Vec<Vec<Point>> = m
+        .curves
+        .iter()
+        .filter(|c| c.closed && c.kind == CurveKind::Feature && outline(&c.name))
+        .map(|c| c.vertices.iter().map(|&v| m.source[v as usize]).collect())
+        .collect();
+    let inside: Vec<[u32; 3]> = m
+        .triangles
+        .iter()
+        .filter(|t| {
+            let c = t.iter().map(|&v| m.source[v as usize]).sum::<Point>() / 3.0;
+            rings
+                .iter()
+                .any(|r| crate::geometry::point_in_polygon(c, r))
+        })
+        .copied()
+        .collect();
+    (!inside.is_empty()).then_some(inside)
 }
 
 fn feature(name: &str, c: &Contour, step: f64) -> ControlCurve {
@@ -302,9 +345,11 @@ fn drop_feature(
     s: &mut Drawing,
     t: &mut Drawing,
     report: &mut AutoReport,
+    (cs, ct): (&[Contour], &[Contour]),
     name: &str,
     why: &Error,
 ) {
+    let pair = report.features.iter().find(|f| f.0 == name).cloned();
     s.controls.features.retain(|f| f.name != name);
     t.controls.features.retain(|f| f.name != name);
     report.features.retain(|f| f.0 != name);
@@ -313,4 +358,22 @@ fn drop_feature(
         other => other.to_string(),
     };
     report.dropped.push((name.to_string(), reason));
+    // A hole closing to a seed, or opening from one, only means something inside its outline's
+    // morph: with the outline's feature gone, its seeds go too.
+    let Some((_, a, b)) = pair else { return };
+    let orphans: Vec<String> = report
+        .features
+        .iter()
+        .filter(|f| {
+            (f.2 == usize::MAX && cs.get(f.1).and_then(|c| c.parent) == Some(a) && a != usize::MAX)
+                || (f.1 == usize::MAX
+                    && ct.get(f.2).and_then(|c| c.parent) == Some(b)
+                    && b != usize::MAX)
+        })
+        .map(|f| f.0.clone())
+        .collect();
+    for orphan in orphans {
+        let why = Error::input("<auto>", format!("its outline feature-{name} was dropped"));
+        drop_feature(s, t, report, (cs, ct), &orphan, &why);
+    }
 }

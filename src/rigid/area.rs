@@ -35,8 +35,9 @@ fn signed_area(points: &[Point], tri: [u32; 3]) -> f64 {
 }
 
 impl AreaRule {
-    /// The rule for `triangles` over parts `comp[v]` (`count` parts) of a mesh with ends
-    /// `source` and `target`. Triangles must be valid indices.
+    /// The rule measuring the area of `triangles` (all of a mesh's, or a region of them) over
+    /// parts `comp[v]` (`count` parts) of a mesh with ends `source` and `target`; a part with no
+    /// measured triangle is left alone. Triangles must be valid indices.
     pub(crate) fn new(
         triangles: &[[u32; 3]],
         comp: &[u32],

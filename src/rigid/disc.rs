@@ -270,8 +270,9 @@ impl DiscRigid {
     }
 
     /// [`DiscRigid::new`] on a triangle mesh (`discs` its one-rings) with the area rule
-    /// (`area.rs`): every connected part's area follows the similarity curve between its end
-    /// areas instead of swelling where it stretches unevenly.
+    /// (`area.rs`): every connected part's area — that of `triangles`, all of the mesh's or a
+    /// region of them — follows the similarity curve between its end areas instead of swelling
+    /// where it stretches unevenly.
     pub(crate) fn with_area_rule(
         source: &[Point],
         target: &[Point],

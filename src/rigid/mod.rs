@@ -114,6 +114,26 @@ impl Interpolator {
         Ok(Interpolator { kind, n })
     }
 
+    /// The disc method on compatible triangle meshes whose area rule measures only the
+    /// triangles of `region` ([`crate::compatible::Compatible::area_region`]): automatic mode's
+    /// padded frame is no part of the shape, so the icons' own area is kept, not the frame's.
+    pub fn with_area_region(
+        source: &[Point],
+        target: &[Point],
+        triangles: &[[u32; 3]],
+        region: &[[u32; 3]],
+    ) -> Result<Self> {
+        disc::validate_points(source, target)?;
+        let n = source.len();
+        check_triangles(triangles, n)?;
+        check_triangles(region, n)?;
+        let rings = crate::mesh::one_rings(triangles, n);
+        Ok(Interpolator {
+            kind: Kind::Disc(DiscRigid::with_area_rule(source, target, &rings, region)?),
+            n,
+        })
+    }
+
     /// The disc method over general compatible point sets with given neighbour lists (`discs[i]`
     /// = indices of the points in `p_i`'s disc, without `i`), e.g. the barycenter mesh of the
     /// shape model (§5), whose discs are "all other points".

@@ -615,7 +615,13 @@ fn a_counter_closes_smoothly_into_a_glyph_without_one() {
 fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
     use crmorph::auto::geometric::named_morphing_paths;
     let mut total = 0;
-    for name in ["gourd", "leaf-to-butterfly", "star-to-blob", "u-to-s", "dancer"] {
+    for name in [
+        "gourd",
+        "leaf-to-butterfly",
+        "star-to-blob",
+        "u-to-s",
+        "dancer",
+    ] {
         let dir = fixtures().join(name);
         let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
         let (ds, dt) = (open(&s), open(&t));
@@ -673,5 +679,57 @@ fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
             );
         }
     }
-    assert!(total >= 5, "marked fixtures' own boundaries and features morph as one");
+    assert!(
+        total >= 5,
+        "marked fixtures' own boundaries and features morph as one"
+    );
+}
+
+/// Automatic mode's boundary is a padded frame around the icon, so the area rule keeps the area
+/// the matched artwork covers (`Compatible::area_region`: the triangles inside closed outline
+/// features), not the frame's: that area follows a similarity's, `((1 − t)·√A₀ + t·√A₁)²`, in
+/// every frame.
+#[test]
+fn automatic_mode_keeps_the_artworks_area_not_the_frames() {
+    use crmorph::quality::area;
+    let mut checked = 0;
+    for (name, s, t) in icon_pairs() {
+        let (ds, dt) = (open(&s), open(&t));
+        let scene = |p: &Path| {
+            Scene::from_svg_in(
+                &p.display().to_string(),
+                &std::fs::read_to_string(p).unwrap(),
+                "controls",
+                p.parent(),
+            )
+            .unwrap()
+        };
+        let (c, _, _, _) =
+            build_auto(&ds, &dt, &scene(&s), &scene(&t), &MorphOptions::default()).unwrap();
+        let Some(region) = &c.area_region else {
+            continue;
+        };
+        let m = &c.meshes;
+        assert!(
+            region.len() < m.triangles.len(),
+            "{name}: the frame is outside"
+        );
+        let it =
+            Interpolator::with_area_region(&m.source, &m.target, &m.triangles, region).unwrap();
+        let (r0, r1) = (
+            area(region, &m.source).sqrt(),
+            area(region, &m.target).sqrt(),
+        );
+        for k in 0..=10 {
+            let t = k as f64 / 10.0;
+            let want = ((1.0 - t) * r0 + t * r1).powi(2);
+            let got = area(region, &it.at_vec(t));
+            assert!(
+                (got / want - 1.0).abs() < 1e-9,
+                "{name}: t = {t}: {got} vs {want}"
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 10, "{checked} pairs with a filled region");
 }
