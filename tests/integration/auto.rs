@@ -733,3 +733,50 @@ fn automatic_mode_keeps_the_artworks_area_not_the_frames() {
     }
     assert!(checked >= 10, "{checked} pairs with a filled region");
 }
+
+/// An anchor in the plain files still pins the correspondence in automatic mode: the circle's
+/// top is tied to the square's right side, a quarter turn from where crmorph would put it.
+#[test]
+fn anchors_override_the_automatic_correspondence() {
+    let dir = fixtures().join("icons").join("circle-to-square");
+    let with_anchor = |file: &str, x: f64, y: f64| {
+        let svg = std::fs::read_to_string(dir.join(file)).unwrap();
+        svg.replace(
+            "</svg>",
+            &format!(
+                "<g id=\"controls\"><circle id=\"anchor-turn\" cx=\"{x}\" cy=\"{y}\" r=\"0.1\"/></g></svg>"
+            ),
+        )
+    };
+    let (src, tgt) = (
+        with_anchor("source.svg", 8.0, 0.0),
+        with_anchor("target.svg", 16.0, 8.0),
+    );
+    let o = crmorph::drawing::ReadOptions::default();
+    let ds = crmorph::drawing::Drawing::from_str("circle.svg", &src, &o).unwrap();
+    let dt = crmorph::drawing::Drawing::from_str("square.svg", &tgt, &o).unwrap();
+    assert!(
+        crmorph::auto::is_unmarked(&ds),
+        "anchors alone keep automatic mode"
+    );
+    let ss = Scene::from_svg("circle.svg", &src, "controls").unwrap();
+    let ts = Scene::from_svg("square.svg", &tgt, "controls").unwrap();
+    let (c, report, _, _) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default()).unwrap();
+    assert_eq!(report.features.len(), 1, "{report}");
+    let m = &c.meshes;
+    let curve = m.curves.iter().find(|k| k.name != "boundary").unwrap();
+    let top = curve
+        .vertices
+        .iter()
+        .min_by(|&&a, &&b| {
+            let d = |v: u32| m.source[v as usize].distance(Point::new(8.0, 0.0));
+            d(a).total_cmp(&d(b))
+        })
+        .copied()
+        .unwrap();
+    let there = m.target[top as usize];
+    assert!(
+        there.distance(Point::new(16.0, 8.0)) < 0.2,
+        "the circle's top goes to {there}"
+    );
+}
