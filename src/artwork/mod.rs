@@ -284,40 +284,6 @@ pub struct ImageItem {
 }
 
 impl Scene {
-    /// The scene without the items at `remove`, indices into [`Scene::items`] (a removed group
-    /// takes its children with it).
-    pub fn without_items(&self, remove: &[usize]) -> Scene {
-        fn walk(g: &Group, next: &mut usize, remove: &[usize]) -> Group {
-            let mut children = Vec::with_capacity(g.children.len());
-            for c in &g.children {
-                let index = *next;
-                *next += 1;
-                match c {
-                    Item::Group(sub) => {
-                        let kept = walk(sub, next, remove);
-                        if !remove.contains(&index) {
-                            children.push(Item::Group(kept));
-                        }
-                    }
-                    other => {
-                        if !remove.contains(&index) {
-                            children.push(other.clone());
-                        }
-                    }
-                }
-            }
-            Group {
-                children,
-                ..g.clone()
-            }
-        }
-        let mut next = 0;
-        Scene {
-            root: walk(&self.root, &mut next, remove),
-            ..self.clone()
-        }
-    }
-
     /// Every path and image in paint order, depth first (for tests and statistics).
     pub fn items(&self) -> Vec<&Item> {
         fn walk<'a>(g: &'a Group, out: &mut Vec<&'a Item>) {
@@ -337,4 +303,12 @@ impl Scene {
 /// Converts a crmorph point to a kurbo point.
 pub(crate) fn to_kurbo(p: Point) -> kurbo::Point {
     kurbo::Point::new(p.x, p.y)
+}
+
+/// Number of subpaths (move-to commands) of `path`.
+pub(crate) fn subpath_count(path: &kurbo::BezPath) -> usize {
+    path.elements()
+        .iter()
+        .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+        .count()
 }

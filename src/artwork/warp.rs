@@ -362,12 +362,7 @@ mod tests {
         assert!(p.fill.is_none());
         let s = p.stroke.as_ref().unwrap();
         assert!(s.dashes.is_empty());
-        let subpaths = p
-            .path
-            .elements()
-            .iter()
-            .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
-            .count();
+        let subpaths = crate::artwork::subpath_count(&p.path);
         // Each dash is 2 long on a period of 3: the curve's length / 3, give or take one.
         let Item::Path(orig) = &b.scene().root.children[1] else {
             panic!()

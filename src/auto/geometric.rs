@@ -355,13 +355,7 @@ fn item_with_id<'a>(paths: &'a [Option<PathItem>], id: &str) -> Option<(usize, &
         .enumerate()
         .filter_map(|(i, p)| p.as_ref().filter(|p| p.id == id).map(|p| (i, p)));
     let (i, p) = found.next()?;
-    let subpaths = p
-        .path
-        .elements()
-        .iter()
-        .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
-        .count();
-    (found.next().is_none() && subpaths == 1).then_some((i, p))
+    (found.next().is_none() && crate::artwork::subpath_count(&p.path) == 1).then_some((i, p))
 }
 
 /// Marked-up drawings (issue #6, item 3): an artwork path that is itself the boundary or a

@@ -46,15 +46,7 @@ struct Auto {
 
 fn auto(s: &Path, t: &Path) -> Auto {
     let (ds, dt) = (open(s), open(t));
-    let scene = |p: &Path| {
-        Scene::from_svg_in(
-            &p.display().to_string(),
-            &std::fs::read_to_string(p).unwrap(),
-            "controls",
-            p.parent(),
-        )
-        .unwrap()
-    };
+    let scene = crate::common::scene_of;
     let (ss, ts) = (scene(s), scene(t));
     let (c, _report, _, _) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default())
         .unwrap_or_else(|e| panic!("{}: {e}", s.display()));
@@ -174,14 +166,7 @@ fn matched_paths_morph_as_one_crisp_shape() {
         let dir = fixtures().join("icons").join(name);
         let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
         let (ds, dt) = (open(&s), open(&t));
-        let scene = |p: &Path| {
-            Scene::from_svg(
-                &p.display().to_string(),
-                &std::fs::read_to_string(p).unwrap(),
-                "controls",
-            )
-            .unwrap()
-        };
+        let scene = crate::common::scene_of;
         let (ss, ts) = (scene(&s), scene(&t));
         let (c, report, _, _) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default()).unwrap();
         assert!(
@@ -274,14 +259,7 @@ fn matched_paths_morph_as_one_crisp_shape() {
 fn matched_contours_keep_their_vertex_correspondence() {
     for (name, s, t) in icon_pairs() {
         let (ds, dt) = (open(&s), open(&t));
-        let scene = |p: &Path| {
-            Scene::from_svg(
-                &p.display().to_string(),
-                &std::fs::read_to_string(p).unwrap(),
-                "controls",
-            )
-            .unwrap()
-        };
+        let scene = crate::common::scene_of;
         let (c, _, ds, dt) =
             build_auto(&ds, &dt, &scene(&s), &scene(&t), &MorphOptions::default()).unwrap();
         let m = &c.meshes;
@@ -324,14 +302,7 @@ fn matched_contours_keep_their_vertex_correspondence() {
 fn auto_morphing(name: &str) -> (Morph, Vec<usize>) {
     let dir = fixtures().join("icons").join(name);
     let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
-    let scene = |p: &Path| {
-        Scene::from_svg(
-            &p.display().to_string(),
-            &std::fs::read_to_string(p).unwrap(),
-            "controls",
-        )
-        .unwrap()
-    };
+    let scene = crate::common::scene_of;
     let (ss, ts) = (scene(&s), scene(&t));
     let (c, report, _, _) =
         build_auto(&open(&s), &open(&t), &ss, &ts, &MorphOptions::default()).unwrap();
@@ -391,6 +362,26 @@ fn share_beyond_a_pixel(a: &tiny_skia::Pixmap, b: &tiny_skia::Pixmap) -> f64 {
     off as f64 / (w * h) as f64
 }
 
+/// Frames at t = 1e-4 and 1 − 1e-4 show the input drawings: strictly their edges differ by the
+/// flattening tolerances (as they do without morphing paths), nothing else may — at most 0.5 %
+/// of pixels beyond a pixel's edge shift.
+fn no_pop_near_the_ends(morph: &Morph, name: &str) {
+    for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
+        let (a, b) = (
+            morph.pixmap_at(near).unwrap(),
+            morph.pixmap_at(end).unwrap(),
+        );
+        let off = share_beyond_a_pixel(&a, &b);
+        eprintln!(
+            "{name}: t = {near}: {:.3} % pixels off t = {end} by more than a pixel's edge shift \
+             ({:.3} % strictly)",
+            100.0 * off,
+            100.0 * share_off(&a, &b)
+        );
+        assert!(off <= 0.005, "{name}: t = {near} pops: {off}");
+    }
+}
+
 /// An SVG document rendered with resvg at `like`'s size.
 fn render_svg(svg: &str, like: &tiny_skia::Pixmap) -> tiny_skia::Pixmap {
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default()).unwrap();
@@ -414,22 +405,7 @@ fn in_between_frames_keep_the_inputs_paint_order() {
     assert_eq!(items, [0], "the body morphs, the detail above it does not");
     for name in ["badge-minus-to-dots", "ok-to-rating", "lock-to-unlock"] {
         let (morph, _) = auto_morphing(name);
-        for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
-            let (a, b) = (
-                morph.pixmap_at(near).unwrap(),
-                morph.pixmap_at(end).unwrap(),
-            );
-            // Strictly, edges differ by the flattening tolerances (as they do without
-            // morphing paths); nothing else may.
-            let off = share_beyond_a_pixel(&a, &b);
-            eprintln!(
-                "{name}: t = {near}: {:.3} % pixels off t = {end} by more than a pixel's edge \
-                 shift ({:.3} % strictly)",
-                100.0 * off,
-                100.0 * share_off(&a, &b)
-            );
-            assert!(off <= 0.005, "{name}: t = {near} pops: {off}");
-        }
+        no_pop_near_the_ends(&morph, name);
         // The SVG frame (layers as filter groups) shows what the raster frame shows.
         for t in [0.3, 0.5] {
             let px = morph.pixmap_at(t).unwrap();
@@ -476,18 +452,7 @@ fn gradients_interpolate_on_paths_that_morph_as_one_shape() {
     assert!(svg.contains("<linearGradient") && svg.contains("<radialGradient"));
     // Unblended: the gradients are painted once, not cross-faded (no blend filter group).
     assert!(!svg.contains("crmorph-blend"), "nothing left to blend");
-    for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
-        let (a, b) = (
-            morph.pixmap_at(near).unwrap(),
-            morph.pixmap_at(end).unwrap(),
-        );
-        let off = share_beyond_a_pixel(&a, &b);
-        eprintln!(
-            "gradient-badge: t = {near}: {:.3} % pixels off t = {end} beyond an edge shift",
-            100.0 * off
-        );
-        assert!(off <= 0.005, "t = {near} pops: {off}");
-    }
+    no_pop_near_the_ends(&morph, "gradient-badge");
     for t in [0.25, 0.5, 0.75] {
         let px = morph.pixmap_at(t).unwrap();
         let off = share_off(&render_svg(&morph.svg_at(t).unwrap(), &px), &px);
@@ -546,14 +511,7 @@ fn subpaths(path: &kurbo::BezPath) -> Vec<Vec<Point>> {
 fn a_counter_closes_smoothly_into_a_glyph_without_one() {
     let dir = fixtures().join("icons").join("glyph-e-to-c");
     let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
-    let scene = |p: &Path| {
-        Scene::from_svg(
-            &p.display().to_string(),
-            &std::fs::read_to_string(p).unwrap(),
-            "controls",
-        )
-        .unwrap()
-    };
+    let scene = crate::common::scene_of;
     let (ss, ts) = (scene(&s), scene(&t));
     let (c, report, _, _) =
         build_auto(&open(&s), &open(&t), &ss, &ts, &MorphOptions::default()).unwrap();
@@ -625,15 +583,7 @@ fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
         let dir = fixtures().join(name);
         let (s, t) = (dir.join("source.svg"), dir.join("target.svg"));
         let (ds, dt) = (open(&s), open(&t));
-        let scene = |p: &Path| {
-            Scene::from_svg_in(
-                &p.display().to_string(),
-                &std::fs::read_to_string(p).unwrap(),
-                "controls",
-                p.parent(),
-            )
-            .unwrap()
-        };
+        let scene = crate::common::scene_of;
         let (ss, ts) = (scene(&s), scene(&t));
         let c = crmorph::compatible::build(&ds, &dt, &MorphOptions::default()).unwrap();
         let paths = named_morphing_paths(&ss, &ts, &c);
@@ -649,14 +599,7 @@ fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
         frame.size = (192, 192);
         let morph =
             Morph::with_morphing_paths(c.meshes.clone(), interp, &ss, &ts, frame, paths).unwrap();
-        for (near, end) in [(1e-4, 0.0), (1.0 - 1e-4, 1.0)] {
-            let (a, b) = (
-                morph.pixmap_at(near).unwrap(),
-                morph.pixmap_at(end).unwrap(),
-            );
-            let off = share_beyond_a_pixel(&a, &b);
-            assert!(off <= 0.005, "{name}: t = {near} pops: {off}");
-        }
+        no_pop_near_the_ends(&morph, name);
         let px = morph.pixmap_at(0.5).unwrap();
         let off = share_off(&render_svg(&morph.svg_at(0.5).unwrap(), &px), &px);
         assert!(off <= 0.005, "{name}: SVG and raster differ: {off}");
@@ -695,15 +638,7 @@ fn automatic_mode_keeps_the_artworks_area_not_the_frames() {
     let mut checked = 0;
     for (name, s, t) in icon_pairs() {
         let (ds, dt) = (open(&s), open(&t));
-        let scene = |p: &Path| {
-            Scene::from_svg_in(
-                &p.display().to_string(),
-                &std::fs::read_to_string(p).unwrap(),
-                "controls",
-                p.parent(),
-            )
-            .unwrap()
-        };
+        let scene = crate::common::scene_of;
         let (c, _, _, _) =
             build_auto(&ds, &dt, &scene(&s), &scene(&t), &MorphOptions::default()).unwrap();
         let Some(region) = &c.area_region else {

@@ -80,3 +80,14 @@ pub(crate) fn pixels_off_input(file: &Path, got: &tiny_skia::Pixmap) -> (usize, 
         .count();
     (bad, want.pixels().len())
 }
+
+/// A drawing's artwork, guides in its `controls` group left out, resources beside the file.
+pub(crate) fn scene_of(p: &Path) -> crmorph::artwork::Scene {
+    crmorph::artwork::Scene::from_svg_in(
+        &p.display().to_string(),
+        &std::fs::read_to_string(p).unwrap(),
+        "controls",
+        p.parent(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+}

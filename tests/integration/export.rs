@@ -4,7 +4,6 @@
 
 use std::path::Path;
 
-use crmorph::artwork::Scene;
 use crmorph::export::{Easing, Morph, Playback, Timeline};
 use crmorph::render::FrameOptions;
 use crmorph::rigid::{Interpolator, Method};
@@ -18,15 +17,7 @@ pub(crate) fn morph_of(s: &Path, t: &Path) -> Morph {
     let c = compatible(&ds, &dt, false);
     let m = &c.meshes;
     let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
-    let scene = |p: &Path| {
-        Scene::from_svg_in(
-            &p.display().to_string(),
-            &std::fs::read_to_string(p).unwrap(),
-            "controls",
-            p.parent(),
-        )
-        .unwrap()
-    };
+    let scene = crate::common::scene_of;
     let (ss, ts) = (scene(s), scene(t));
     let frame = FrameOptions::for_scene(&ss);
     Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
