@@ -313,6 +313,9 @@ fn pad_boundary(d: &mut Drawing) {
 }
 
 /// The feature of `d` an error names (longest matching name, so `auto-12` beats `auto-1`).
+/// The feature an error names that is cheapest to lose: of the features whose ids the message
+/// mentions (two for a crossing), the one with the shortest outline, so that of a small part
+/// touching a large one the large one keeps its crisp morph. Ties go to the one listed last.
 fn named_feature(e: &Error, d: &Drawing) -> Option<String> {
     let text = e.to_string();
     d.controls
@@ -326,17 +329,22 @@ fn named_feature(e: &Error, d: &Drawing) -> Option<String> {
                     .is_some_and(|c| c.is_ascii_digit())
             })
         })
-        .max_by_key(|f| f.id.len())
+        .rev()
+        .min_by(|a, b| outline_length(a).total_cmp(&outline_length(b)))
         .map(|f| f.name.clone())
+}
+
+/// Length of a control curve's polyline (closing edge left out).
+fn outline_length(c: &ControlCurve) -> f64 {
+    c.points.windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
 /// The name of the feature with the shortest outline.
 fn smallest(d: &Drawing) -> String {
-    let len = |c: &ControlCurve| -> f64 { c.points.windows(2).map(|w| w[0].distance(w[1])).sum() };
     d.controls
         .features
         .iter()
-        .min_by(|a, b| len(a).total_cmp(&len(b)))
+        .min_by(|a, b| outline_length(a).total_cmp(&outline_length(b)))
         .map(|f| f.name.clone())
         .unwrap_or_default()
 }

@@ -715,3 +715,13 @@ fn anchors_override_the_automatic_correspondence() {
         "the circle's top goes to {there}"
     );
 }
+
+/// When two features touch, the one with the shorter outline is the one dropped: the lock's
+/// shackle ends on its body, and the body (item 1) keeps its crisp morph while the shackle's
+/// changing leg cross-fades.
+#[test]
+fn of_two_touching_features_the_smaller_is_dropped() {
+    let (_, items) = auto_morphing("lock-to-unlock");
+    assert!(items.contains(&1), "the body morphs as one shape: {items:?}");
+    assert!(!items.contains(&0), "the shackle is blended: {items:?}");
+}
