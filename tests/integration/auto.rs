@@ -722,6 +722,9 @@ fn anchors_override_the_automatic_correspondence() {
 #[test]
 fn of_two_touching_features_the_smaller_is_dropped() {
     let (_, items) = auto_morphing("lock-to-unlock");
-    assert!(items.contains(&1), "the body morphs as one shape: {items:?}");
+    assert!(
+        items.contains(&1),
+        "the body morphs as one shape: {items:?}"
+    );
     assert!(!items.contains(&0), "the shackle is blended: {items:?}");
 }
