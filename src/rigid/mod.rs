@@ -94,12 +94,7 @@ impl Interpolator {
         let n = source.len();
         check_triangles(triangles, n)?;
         let kind = match method {
-            Method::Disc => {
-                let rings = crate::mesh::one_rings(triangles, n);
-                Kind::Disc(DiscRigid::with_area_rule(
-                    source, target, &rings, triangles,
-                )?)
-            }
+            Method::Disc => return Self::with_area_region(source, target, triangles, triangles),
             Method::Triangle => {
                 let rings = crate::mesh::one_rings(triangles, n);
                 let angles = linear::best_fit_angles(source, target, &rings);

@@ -189,7 +189,6 @@ fn reachable(triangles: &[[u32; 3]], n: usize, seeds: &[u32]) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drawing::SkeletonChain;
 
     /// A `w × h` grid of unit squares, two triangles each.
     fn grid(w: usize, h: usize) -> (Vec<Point>, Vec<[u32; 3]>) {
@@ -218,19 +217,11 @@ mod tests {
     #[test]
     fn weights_are_one_at_their_joint_and_fall_off() {
         let (pts, tris) = grid(20, 4);
-        let s = Skeleton::from_chains(
-            "a.svg",
-            &[SkeletonChain {
-                id: "skeleton".into(),
-                points: vec![
-                    Point::new(1.0, 2.0),
-                    Point::new(10.0, 2.0),
-                    Point::new(19.0, 2.0),
-                ],
-            }],
-            1e-6,
-        )
-        .unwrap();
+        let s = crate::skeleton::reference::one_chain(&[
+            Point::new(1.0, 2.0),
+            Point::new(10.0, 2.0),
+            Point::new(19.0, 2.0),
+        ]);
         let w = joint_weights(&s, &pts, &tris).unwrap();
         let at = |x: usize, y: usize| y * 21 + x;
         assert!((w[0][at(1, 2)] - 1.0).abs() < 1e-12);
@@ -260,19 +251,11 @@ mod tests {
     #[test]
     fn a_regional_skeleton_leaves_the_rest_unbound() {
         let (pts, tris) = grid(30, 4);
-        let s = Skeleton::from_chains(
-            "a.svg",
-            &[SkeletonChain {
-                id: "skeleton".into(),
-                points: vec![
-                    Point::new(1.0, 2.0),
-                    Point::new(5.0, 2.0),
-                    Point::new(9.0, 2.0),
-                ],
-            }],
-            1e-6,
-        )
-        .unwrap();
+        let s = crate::skeleton::reference::one_chain(&[
+            Point::new(1.0, 2.0),
+            Point::new(5.0, 2.0),
+            Point::new(9.0, 2.0),
+        ]);
         let boundary = rim(&pts, 30.0, 4.0);
         let b = bind(&s, &pts, &tris, &boundary).unwrap();
         let at = |x: usize, y: usize| y * 31 + x;

@@ -261,22 +261,13 @@ fn pchip_slopes(times: &[f64], keys: &[Vec<f64>]) -> Vec<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drawing::SkeletonChain;
 
     fn arm() -> Skeleton {
-        Skeleton::from_chains(
-            "a.svg",
-            &[SkeletonChain {
-                id: "skeleton".into(),
-                points: vec![
-                    Point::new(0.0, 0.0),
-                    Point::new(10.0, 0.0),
-                    Point::new(20.0, 0.0),
-                ],
-            }],
-            1e-6,
-        )
-        .unwrap()
+        crate::skeleton::reference::one_chain(&[
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(20.0, 0.0),
+        ])
     }
 
     fn rotate(p: &[Point], a: f64) -> Vec<Point> {

@@ -169,6 +169,16 @@ impl Skeleton {
     }
 }
 
+/// A skeleton of one chain through `points`, for tests.
+#[cfg(test)]
+pub(crate) fn one_chain(points: &[Point]) -> Skeleton {
+    let chain = SkeletonChain {
+        id: "skeleton".into(),
+        points: points.to_vec(),
+    };
+    Skeleton::from_chains("a.svg", &[chain], 1e-6).expect("a test chain")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -46,6 +46,14 @@ fn swing(skeleton: &Skeleton, pose: &[Point], id: &str, which: usize, angle: f64
     out
 }
 
+/// Skeleton control of `d` without poses (the plain interpolation) and its derived skeleton at
+/// `t`, the starting point of a pose.
+fn unposed(d: &Dancer, t: f64) -> (SkeletonControl, Vec<Point>) {
+    let plain = SkeletonControl::new(&d.meshes, d.skeleton.clone(), &[]).unwrap();
+    let derived = plain.derived(&plain.at_vec(t));
+    (plain, derived)
+}
+
 /// Skeleton control of `d` with one pose, `joints` at `t`.
 fn posed(d: &Dancer, t: f64, joints: Vec<Point>) -> SkeletonControl {
     SkeletonControl::new(&d.meshes, d.skeleton.clone(), &[Pose { t, joints }])
@@ -75,9 +83,8 @@ fn without_poses_the_motion_is_the_plain_rigid_interpolation() {
 fn a_pose_is_met_at_its_frame_and_the_ends_stay_exact() {
     let d = dancer("source.svg");
     let m = &d.meshes;
-    let plain = SkeletonControl::new(m, d.skeleton.clone(), &[]).unwrap();
     let tc = 0.5;
-    let derived = plain.derived(&plain.at_vec(tc));
+    let (_, derived) = unposed(&d, tc);
     // Kick the second leg up by 35° and raise the first arm by 30°.
     let pose = swing(
         &d.skeleton,
@@ -188,9 +195,8 @@ fn desired_bones_stay_between_their_key_lengths() {
 fn a_lower_body_skeleton_leaves_the_upper_body_alone() {
     let d = dancer("source-lower.svg");
     let m = &d.meshes;
-    let plain = SkeletonControl::new(m, d.skeleton.clone(), &[]).unwrap();
     let tc = 0.5;
-    let derived = plain.derived(&plain.at_vec(tc));
+    let (plain, derived) = unposed(&d, tc);
     let pose = swing(
         &d.skeleton,
         &derived,
