@@ -7,47 +7,34 @@
 //! about 0.4 of 255 and 0.2 % of pixels differ by more than 32. The test allows a mean of 2,
 //! 1 % of pixels beyond 32 and 0.2 % beyond 64 — a frame from the wrong time, a missing blend or a
 //! snapping `d` animation exceeds these by far.
-//!
-//! Chromium is found as `$CRMORPH_CHROMIUM`, else `chromium`, `chromium-browser` or
-//! `google-chrome` on the PATH (`.ci/run` installs Debian's `chromium`). Without one the test fails
-//! with instructions; `CRMORPH_SKIP_BROWSER=1` skips it explicitly.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
+use libtest_mimic::Trial;
 use tiny_skia::Pixmap;
+
+use crate::{needing, tools};
+
+pub(crate) fn trials() -> Vec<Trial> {
+    let chrome = tools::chromium(2);
+    vec![
+        needing(
+            "browser::animated_svg_paused_in_chromium_shows_crmorphs_frames",
+            &chrome,
+            animated_svg_paused_shows_crmorphs_frames,
+        ),
+        needing(
+            "browser::html_preview_slider_scrubs_to_crmorphs_frames",
+            &chrome,
+            html_preview_slider_scrubs_to_crmorphs_frames,
+        ),
+    ]
+}
 
 const SIZE: (u32, u32) = (400, 400);
 const DURATION: f64 = 2.0;
 const TIMES: [f64; 3] = [0.0, 0.37, 1.0];
-
-fn chromium() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("CRMORPH_CHROMIUM") {
-        return Some(PathBuf::from(p));
-    }
-    let path = std::env::var_os("PATH")?;
-    for dir in std::env::split_paths(&path) {
-        for name in ["chromium", "chromium-browser", "google-chrome"] {
-            let p = dir.join(name);
-            if p.is_file() {
-                return Some(p);
-            }
-        }
-    }
-    None
-}
-
-/// Chromium, or `None` when the browser tests are explicitly skipped.
-fn browser() -> Option<PathBuf> {
-    if std::env::var_os("CRMORPH_SKIP_BROWSER").is_some() {
-        eprintln!("CRMORPH_SKIP_BROWSER is set: browser tests skipped");
-        return None;
-    }
-    Some(chromium().expect(
-        "headless Chromium is needed for the browser tests: `apt-get install chromium`, or set \
-         CRMORPH_CHROMIUM=/path/to/chrome (CRMORPH_SKIP_BROWSER=1 skips them)",
-    ))
-}
 
 /// Screenshots `page` at the window size `size` into a pixmap.
 fn screenshot(chrome: &Path, page: &Path, size: (u32, u32), work: &Path) -> Pixmap {
@@ -164,9 +151,7 @@ fn gourd(outputs: &[&str]) -> Fixture {
     Fixture { work, frames }
 }
 
-#[test]
-fn animated_svg_paused_in_chromium_shows_crmorphs_frames() {
-    let Some(chrome) = browser() else { return };
+fn animated_svg_paused_shows_crmorphs_frames(chrome: &Path) -> Result<(), String> {
     let f = gourd(&["morph.svg"]);
     let svg = std::fs::read_to_string(f.work.path().join("morph.svg")).unwrap();
     for (at, reference) in TIMES.iter().zip(&f.frames) {
@@ -180,18 +165,17 @@ fn animated_svg_paused_in_chromium_shows_crmorphs_frames() {
             at * DURATION
         );
         std::fs::write(&page, html).unwrap();
-        let shot = screenshot(&chrome, &page, SIZE, f.work.path());
+        let shot = screenshot(chrome, &page, SIZE, f.work.path());
         assert_matches(&format!("animated SVG at t = {at}"), &shot, reference);
         // The comparison tells frames apart: the middle is neither end.
         if *at == 0.37 {
             assert!(!matches(&shot, &f.frames[0]) && !matches(&shot, &f.frames[2]));
         }
     }
+    Ok(())
 }
 
-#[test]
-fn html_preview_slider_scrubs_to_crmorphs_frames() {
-    let Some(chrome) = browser() else { return };
+fn html_preview_slider_scrubs_to_crmorphs_frames(chrome: &Path) -> Result<(), String> {
     let f = gourd(&["preview.html"]);
     let page = std::fs::read_to_string(f.work.path().join("preview.html")).unwrap();
     assert!(!page.contains("http://") || page.matches("http://").count() <= 2);
@@ -213,10 +197,11 @@ fn html_preview_slider_scrubs_to_crmorphs_frames() {
         assert_ne!(driven, page, "the preview has a </body>");
         let path = f.work.path().join(format!("preview-{at}.html"));
         std::fs::write(&path, driven).unwrap();
-        let shot = screenshot(&chrome, &path, SIZE, f.work.path());
+        let shot = screenshot(chrome, &path, SIZE, f.work.path());
         assert_matches(&format!("HTML preview at t = {at}"), &shot, reference);
         if *at == 0.37 {
             assert!(!matches(&shot, &f.frames[0]) && !matches(&shot, &f.frames[2]));
         }
     }
+    Ok(())
 }

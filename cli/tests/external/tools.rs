@@ -1,0 +1,98 @@
+//! Finding the external programs, and the note printed when one is missing.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A program found on this machine, or why it was not.
+#[derive(Debug, Clone)]
+pub(crate) enum Found {
+    Yes(PathBuf),
+    Missing(String),
+}
+
+/// Whether missing programs are failures (`CRMORPH_REQUIRE_TOOLS=1`, set by `.ci/run`).
+pub(crate) fn required() -> bool {
+    std::env::var_os("CRMORPH_REQUIRE_TOOLS").is_some_and(|v| !v.is_empty() && v != "0")
+}
+
+/// `names` looked up on the PATH, in order.
+fn on_path(names: &[&str]) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .flat_map(|dir| names.iter().map(move |n| dir.join(n)))
+        .find(|p| p.is_file())
+}
+
+/// Whether `program --version` runs (a binary on the PATH may be a broken stub).
+fn runs(program: &Path) -> bool {
+    Command::new(program)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Prints the one-line note for a missing program (once per program, on stderr, which cargo
+/// shows for harness-less test binaries).
+fn note(what: &str, tests: usize, how: &str) {
+    eprintln!(
+        "note: {tests} test(s) that need {what} are skipped (listed as ignored): {how}; \
+         CRMORPH_REQUIRE_TOOLS=1 makes a missing program a failure"
+    );
+}
+
+/// Headless Chromium: `$CRMORPH_CHROMIUM`, else `chromium`, `chromium-browser` or
+/// `google-chrome` on the PATH.
+pub(crate) fn chromium(tests: usize) -> Found {
+    let found = match std::env::var_os("CRMORPH_CHROMIUM") {
+        Some(p) => Some(PathBuf::from(p)),
+        None => on_path(&["chromium", "chromium-browser", "google-chrome"]),
+    };
+    match found {
+        Some(p) if runs(&p) => Found::Yes(p),
+        other => {
+            let why = match other {
+                Some(p) => format!("{} does not run", p.display()),
+                None => "no Chromium was found".to_string(),
+            };
+            if !required() {
+                note(
+                    "headless Chromium",
+                    tests,
+                    &format!(
+                        "{why}; install it (Debian: apt-get install chromium) or set \
+                         CRMORPH_CHROMIUM=/path/to/chrome"
+                    ),
+                );
+            }
+            Found::Missing(why)
+        }
+    }
+}
+
+/// Node.js: `$CRMORPH_NODE`, else `node` on the PATH.
+pub(crate) fn node(tests: usize) -> Found {
+    let found = match std::env::var_os("CRMORPH_NODE") {
+        Some(p) => Some(PathBuf::from(p)),
+        None => on_path(&["node", "nodejs"]),
+    };
+    match found {
+        Some(p) if runs(&p) => Found::Yes(p),
+        other => {
+            let why = match other {
+                Some(p) => format!("{} does not run", p.display()),
+                None => "no Node.js was found".to_string(),
+            };
+            if !required() {
+                note(
+                    "Node.js",
+                    tests,
+                    &format!(
+                        "{why}; install it (Debian: apt-get install nodejs) or set \
+                         CRMORPH_NODE=/path/to/node"
+                    ),
+                );
+            }
+            Found::Missing(why)
+        }
+    }
+}
