@@ -10,6 +10,7 @@ use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::mapping::{composite_map, MappingOptions, MappingStats};
 use crate::mesh::CompatibleMeshes;
+use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
 use crate::tolerance::Tolerances;
 use crate::triangulation::triangulate;
 
@@ -43,6 +44,50 @@ pub struct Compatible {
     /// the whole mesh (the boundary is the shape); automatic mode, whose boundary is a padded
     /// frame, sets the regions filled by the matched outlines.
     pub area_region: Option<Vec<[u32; 3]>>,
+}
+
+impl Compatible {
+    /// The interpolation of `method` between the two meshes. The disc method keeps the area
+    /// of [`Compatible::area_region`] and, on meshes made of several shapes
+    /// ([`crate::mesh::Parts`]), moves curves without triangles as chains of discs and the
+    /// shapes as one figure, the still part apart.
+    pub fn interpolator(&self, method: Method) -> Result<Interpolator> {
+        let m = &self.meshes;
+        if method != Method::Disc {
+            return Interpolator::new(method, &m.source, &m.target, &m.triangles);
+        }
+        let chains: Vec<Chain> = m
+            .parts
+            .iter()
+            .flat_map(|p| &p.chains)
+            .filter_map(|&c| m.curves.get(c))
+            .map(|c| Chain {
+                vertices: c.vertices.clone(),
+                closed: c.closed,
+            })
+            .collect();
+        let together: Option<Vec<bool>> = m.parts.as_ref().map(|p| {
+            let mut flags = vec![true; m.source.len()];
+            for (t, &k) in m.triangles.iter().zip(&p.of_triangle) {
+                if Some(k) == p.still {
+                    for &v in t {
+                        flags[v as usize] = false;
+                    }
+                }
+            }
+            flags
+        });
+        Interpolator::disc(
+            &m.source,
+            &m.target,
+            &DiscSetup {
+                triangles: &m.triangles,
+                chains: &chains,
+                area_region: self.area_region.as_deref(),
+                together: together.as_deref(),
+            },
+        )
+    }
 }
 
 /// Tolerances common to both drawings: relative to the larger one.

@@ -34,11 +34,29 @@ pub struct InputError {
     pub hint: Option<String>,
 }
 
+/// `s` safe to print on a terminal: control characters (and the other invisible formatting
+/// characters a hostile file may put in an id) as `\u{…}` escapes, at most 200 characters.
+pub fn printable(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for (k, c) in s.chars().enumerate() {
+        if k == 200 {
+            out.push('…');
+            break;
+        }
+        if c.is_control() || matches!(c, '\u{200b}'..='\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}') {
+            out.push_str(&format!("\\u{{{:x}}}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.file)?;
         if let Some(el) = &self.element {
-            write!(f, ": element '{el}'")?;
+            write!(f, ": element '{}'", printable(el))?;
         }
         write!(f, ": {}", self.problem)?;
         if let Some(h) = &self.hint {
@@ -117,5 +135,7 @@ mod tests {
         assert!(!s.contains('\n'));
         assert!(e.is_input());
         assert!(!Error::internal("x").is_input());
+        let odd = Error::at("a.svg", "bad\u{1b}[31mid\n", "x").to_string();
+        assert_eq!(odd, "a.svg: element 'bad\\u{1b}[31mid\\u{a}': x");
     }
 }

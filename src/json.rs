@@ -121,6 +121,7 @@ mod tests {
                 closed: true,
                 vertices: vec![0, 1, 2],
             }],
+            parts: None,
         };
         let v: serde_json::Value = serde_json::from_str(&meshes_json(&m)).unwrap();
         assert_eq!(v["triangles"][0], serde_json::json!([0, 1, 2]));

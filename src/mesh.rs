@@ -43,6 +43,26 @@ pub struct CompatibleMeshes {
     pub target: Vec<Point>,
     /// Boundary first, then features in name order.
     pub curves: Vec<MeshCurve>,
+    /// How the meshes split into shapes, when they are several (automatic mode); `None` for
+    /// one shape.
+    pub parts: Option<Parts>,
+}
+
+/// The shapes of compatible meshes made of several (automatic mode: one compatible
+/// triangulation per matched shape, issue #7): which triangles belong to which shape, the part
+/// that stands still, and the curves that morph without a mesh.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Parts {
+    /// The part of every triangle.
+    pub of_triangle: Vec<u32>,
+    /// Number of parts.
+    pub count: u32,
+    /// The part that does not move: a frame around the drawing with the same vertices in
+    /// both meshes. Artwork outside every shape is bound to it, so it stays where it is.
+    pub still: Option<u32>,
+    /// Indices into the meshes' curves of curves with no triangles (a stroke's centre line,
+    /// an outline morphed without an interior mesh): they move as chains of disc neighbours.
+    pub chains: Vec<usize>,
 }
 
 /// Counts found by [`sanity_check`]; a healthy pair of meshes has every count zero.
@@ -59,7 +79,7 @@ pub struct SanityReport {
     /// Curve vertices whose target position is farther than the tolerance from the expected
     /// twin (only counted when twins are given).
     pub curve_mismatches: usize,
-    /// Vertices used by no triangle.
+    /// Vertices used by no triangle (curve vertices of [`Parts::chains`] excepted).
     pub unused_vertices: usize,
 }
 
@@ -115,6 +135,15 @@ pub fn sanity_check(m: &CompatibleMeshes, twins: Option<&[Vec<Point>]>, tol: f64
         .chain(m.target.iter())
         .filter(|p| !p.is_finite())
         .count();
+    if let Some(parts) = &m.parts {
+        for &c in &parts.chains {
+            for &v in m.curves.get(c).map_or(&[][..], |c| &c.vertices[..]) {
+                if let Some(u) = used.get_mut(v as usize) {
+                    *u = true;
+                }
+            }
+        }
+    }
     r.unused_vertices = used.iter().filter(|u| !**u).count();
     if let Some(twins) = twins {
         for (curve, twin) in m.curves.iter().zip(twins) {
@@ -182,6 +211,7 @@ mod tests {
                 closed: true,
                 vertices: vec![0, 1, 2, 3],
             }],
+            parts: None,
         }
     }
 

@@ -381,14 +381,7 @@ fn scene(d: &Drawing) -> Result<Scene> {
 /// The interpolator of `method` for the meshes (the disc method keeping the area of
 /// `c.area_region` when set), its errors naming the two inputs.
 fn interpolator(inputs: &Inputs, method: MethodArg, c: &Compatible) -> Result<Interpolator> {
-    let m = &c.meshes;
-    let built = match (&c.area_region, method) {
-        (Some(region), MethodArg::Disc) => {
-            Interpolator::with_area_region(&m.source, &m.target, &m.triangles, region)
-        }
-        _ => Interpolator::new(method.method(), &m.source, &m.target, &m.triangles),
-    };
-    built.map_err(|e| {
+    c.interpolator(method.method()).map_err(|e| {
         e.in_file(format!(
             "{} → {}",
             inputs.source.display(),

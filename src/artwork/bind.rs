@@ -50,11 +50,24 @@ impl<'a> PointLocator<'a> {
     /// Builds the grid, about one cell per triangle. Degenerate (zero-area) triangles are left
     /// out; an error is returned when no triangle is left or an index is out of range.
     pub fn new(points: &'a [Point], triangles: &'a [[u32; 3]]) -> Result<Self> {
+        Self::of_triangles(points, triangles, |_| true)
+    }
+
+    /// [`PointLocator::new`] over the triangles `keep` accepts (by index), e.g. one part of a
+    /// mesh made of several; locations still index the whole `triangles` list.
+    pub fn of_triangles(
+        points: &'a [Point],
+        triangles: &'a [[u32; 3]],
+        keep: impl Fn(usize) -> bool,
+    ) -> Result<Self> {
         let n = points.len();
         let mut lo = Point::splat(f64::INFINITY);
         let mut hi = Point::splat(f64::NEG_INFINITY);
         let mut usable = Vec::with_capacity(triangles.len());
         for (i, t) in triangles.iter().enumerate() {
+            if !keep(i) {
+                continue;
+            }
             if t.iter().any(|&v| v as usize >= n) {
                 return Err(Error::internal(format!(
                     "triangle {i} refers to a vertex out of range"
@@ -199,6 +212,72 @@ impl<'a> PointLocator<'a> {
     }
 }
 
+/// Locates artwork in a mesh that may be made of several parts ([`crate::mesh::Parts`]): each
+/// item (a path, a clip shape, an image) is bound as a whole to one part — the shape holding
+/// most of its points, or the still part when no shape holds any — so that an item rides with
+/// the shape it is drawn on and artwork outside every shape stays where it is, instead of
+/// being torn between parts.
+pub(crate) struct Locator<'a> {
+    whole: PointLocator<'a>,
+    parts: Option<PartLocators<'a>>,
+}
+
+struct PartLocators<'a> {
+    of_triangle: &'a [u32],
+    still: Option<u32>,
+    /// One locator per part (`None` for a part without usable triangles).
+    each: Vec<Option<PointLocator<'a>>>,
+}
+
+impl<'a> Locator<'a> {
+    pub(crate) fn new(
+        points: &'a [Point],
+        triangles: &'a [[u32; 3]],
+        parts: Option<&'a crate::mesh::Parts>,
+    ) -> Result<Self> {
+        let whole = PointLocator::new(points, triangles)?;
+        let parts = match parts {
+            Some(p) if p.of_triangle.len() == triangles.len() && p.count > 1 => {
+                let each = (0..p.count)
+                    .map(|k| {
+                        PointLocator::of_triangles(points, triangles, |i| p.of_triangle[i] == k)
+                            .ok()
+                    })
+                    .collect();
+                Some(PartLocators {
+                    of_triangle: &p.of_triangle,
+                    still: p.still,
+                    each,
+                })
+            }
+            _ => None,
+        };
+        Ok(Locator { whole, parts })
+    }
+
+    /// The locator for an item with points `points` (module docs).
+    fn for_item(&self, points: &[Point]) -> &PointLocator<'a> {
+        let Some(parts) = &self.parts else {
+            return &self.whole;
+        };
+        let mut count = vec![0usize; parts.each.len()];
+        for &p in points {
+            if let Some(l) = self.whole.containing(p) {
+                let k = parts.of_triangle[l.triangle as usize];
+                if Some(k) != parts.still {
+                    count[k as usize] += 1;
+                }
+            }
+        }
+        let best = (0..count.len())
+            .filter(|&k| count[k] > 0)
+            .max_by_key(|&k| (count[k], std::cmp::Reverse(k)));
+        let part = best.map(|k| k as u32).or(parts.still);
+        part.and_then(|k| parts.each[k as usize].as_ref())
+            .unwrap_or(&self.whole)
+    }
+}
+
 /// One subpath of a flattened path: a range of points and whether it is closed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Subpath {
@@ -259,12 +338,24 @@ impl Binding {
         triangles: &[[u32; 3]],
         tolerance: f64,
     ) -> Result<Binding> {
+        Self::with_parts(scene, mesh_vertices, triangles, None, tolerance)
+    }
+
+    /// [`Binding::new`] on a mesh made of `parts` (automatic mode): each item is bound to one
+    /// part (see [`Locator`]).
+    pub fn with_parts(
+        scene: &Scene,
+        mesh_vertices: &[Point],
+        triangles: &[[u32; 3]],
+        parts: Option<&crate::mesh::Parts>,
+        tolerance: f64,
+    ) -> Result<Binding> {
         let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
             tolerance
         } else {
             super::flatten_tolerance(scene.view_box, scene.size)
         };
-        let locator = PointLocator::new(mesh_vertices, triangles)?;
+        let locator = Locator::new(mesh_vertices, triangles, parts)?;
         // Half the mesh's mean edge length: straight artwork segments bend with the mesh.
         let (sum, count) = triangles.iter().fold((0.0, 0usize), |(s, c), t| {
             let e = |a: u32, b: u32| mesh_vertices[a as usize].distance(mesh_vertices[b as usize]);
@@ -309,7 +400,7 @@ impl Binding {
     }
 }
 
-fn bind_items(items: &[Item], locator: &PointLocator, tol: Resolution, out: &mut Vec<BoundItem>) {
+fn bind_items(items: &[Item], locator: &Locator, tol: Resolution, out: &mut Vec<BoundItem>) {
     for item in items {
         match item {
             Item::Group(g) => {
@@ -336,7 +427,8 @@ fn bind_items(items: &[Item], locator: &PointLocator, tol: Resolution, out: &mut
             }
             Item::Image(img) => {
                 let c = img.transform * kurbo::Point::new(img.width / 2.0, img.height / 2.0);
-                out.push(BoundItem::Image(locator.locate(Point::new(c.x, c.y))));
+                let c = Point::new(c.x, c.y);
+                out.push(BoundItem::Image(locator.for_item(&[c]).locate(c)));
             }
         }
     }
@@ -393,7 +485,7 @@ fn split_segment(points: &mut Vec<Point>, a: Point, b: Point, max_len: f64) -> u
 }
 
 /// Flattens `path` to polylines at resolution `tol` and locates every point.
-fn bind_path(path: &BezPath, locator: &PointLocator, tol: Resolution) -> BoundPath {
+fn bind_path(path: &BezPath, locator: &Locator, tol: Resolution) -> BoundPath {
     let mut points: Vec<Point> = Vec::new();
     let mut subpaths: Vec<Subpath> = Vec::new();
     kurbo::flatten(path, tol.tolerance, |el| match el {
@@ -423,6 +515,7 @@ fn bind_path(path: &BezPath, locator: &PointLocator, tol: Resolution) -> BoundPa
         PathEl::QuadTo(..) | PathEl::CurveTo(..) => {}
     });
     let bb = path.bounding_box().center();
+    let locator = locator.for_item(&points);
     BoundPath {
         subpaths,
         locations: points.iter().map(|&p| locator.locate(p)).collect(),
@@ -478,7 +571,7 @@ pub(crate) mod tests {
         // must include interior ones at most half a mean edge apart, so the warp follows the
         // mesh instead of keeping the segment straight between its warped ends.
         let (pts, tris) = grid(8, 2, 80.0, 20.0);
-        let loc = PointLocator::new(&pts, &tris).unwrap();
+        let loc = Locator::new(&pts, &tris, None).unwrap();
         let mut path = BezPath::new();
         path.move_to((5.0, 10.0));
         path.line_to((75.0, 10.0));

@@ -28,10 +28,22 @@ impl ArtworkPair {
         tolerance: f64,
     ) -> Result<Self> {
         Ok(ArtworkPair {
-            source: Binding::new(source, &meshes.source, &meshes.triangles, tolerance)
-                .map_err(|e| e.in_file(&source.file))?,
-            target: Binding::new(target, &meshes.target, &meshes.triangles, tolerance)
-                .map_err(|e| e.in_file(&target.file))?,
+            source: Binding::with_parts(
+                source,
+                &meshes.source,
+                &meshes.triangles,
+                meshes.parts.as_ref(),
+                tolerance,
+            )
+            .map_err(|e| e.in_file(&source.file))?,
+            target: Binding::with_parts(
+                target,
+                &meshes.target,
+                &meshes.triangles,
+                meshes.parts.as_ref(),
+                tolerance,
+            )
+            .map_err(|e| e.in_file(&target.file))?,
         })
     }
 
@@ -65,6 +77,7 @@ mod tests {
             target: pts.iter().map(|p| *p * 2.0).collect(),
             source: pts,
             curves: Vec::new(),
+            parts: None,
         };
         let pair = ArtworkPair::new(&scene, &scene, &meshes, 0.01).unwrap();
         // At the source mesh: the source is exact, the target is shrunk by half.

@@ -4,9 +4,9 @@
 //! A filled path contributes its subpaths as closed contours, nested by containment: a subpath
 //! inside an odd number of the path's other subpaths is a hole (for `evenodd`, and for `nonzero`
 //! paths drawn the usual way, with holes wound against their outline). A path that is only
-//! stroked (outline icons) contributes its subpaths as centre lines, open or closed. Contours too
-//! small to matter (below 1/10,000 of the drawing's area, or centre lines shorter than 1/100 of
-//! its diagonal) are left to the artwork.
+//! stroked (outline icons) contributes its subpaths as centre lines, open or closed. Filled
+//! contours too small to matter (below 1/10,000 of the drawing's area) are left to the artwork;
+//! centre lines of any visible length are kept (a short one with round caps is a dot).
 
 use crate::artwork::{Item, Scene};
 use crate::geometry::{point_in_polygon, polygon_area, Point};
@@ -50,42 +50,34 @@ pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
     let (lo, hi) = scene.view_box;
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
     let min_area = 1e-4 * (w * h).abs();
-    let min_length = 1e-2 * (w * w + h * h).sqrt();
+    // Strokes of any visible length count: a short one with round caps is a dot.
+    let min_length = 1e-6 * (w * w + h * h).sqrt();
     let mut out = Vec::new();
     for (index, item) in scene.items().into_iter().enumerate() {
         let Item::Path(p) = item else { continue };
         let path = scene.root_transform * p.path.clone();
         let subs = flatten(&path, tolerance);
-        if p.fill.is_some() {
-            let closed: Vec<Vec<Point>> = subs
+        if let Some(fill) = &p.fill {
+            // The filled region by the path's fill rule (i_overlay): overlapping subpaths
+            // merge, self-crossing rings split, and every shape is one outline with its holes.
+            let rings: Vec<Vec<Point>> = subs
                 .into_iter()
                 .map(|(pts, _)| pts)
-                .filter(|pts| pts.len() >= 3 && polygon_area(pts).abs() >= min_area)
+                .filter(|pts| pts.len() >= 3)
                 .collect();
-            let first = out.len();
-            for (k, pts) in closed.iter().enumerate() {
-                let depth = closed
-                    .iter()
-                    .enumerate()
-                    .filter(|&(j, other)| j != k && contains(other, pts))
-                    .count();
-                let parent = if depth % 2 == 1 {
-                    // The smallest enclosing subpath at even depth is the outline.
-                    closed
-                        .iter()
-                        .enumerate()
-                        .filter(|&(j, other)| j != k && contains(other, pts))
-                        .min_by(|a, b| polygon_area(a.1).abs().total_cmp(&polygon_area(b.1).abs()))
-                        .map(|(j, _)| first + j)
-                } else {
-                    None
-                };
-                let kind = if parent.is_some() {
-                    ContourKind::Hole
-                } else {
-                    ContourKind::Outline
-                };
-                out.push(describe(pts.clone(), true, kind, parent, index));
+            for shape in filled_region(&rings, fill.even_odd) {
+                let mut rings = shape.into_iter().map(|r| separate_pinches(r, tolerance));
+                let Some(outline) = rings.next() else { continue };
+                if outline.len() < 3 || polygon_area(&outline).abs() < min_area {
+                    continue;
+                }
+                let parent = out.len();
+                out.push(describe(outline, true, ContourKind::Outline, None, index));
+                for hole in rings {
+                    if hole.len() >= 3 && polygon_area(&hole).abs() >= min_area {
+                        out.push(describe(hole, true, ContourKind::Hole, Some(parent), index));
+                    }
+                }
             }
         } else if p.stroke.is_some() {
             for (pts, closed) in subs {
@@ -99,9 +91,78 @@ pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
     out
 }
 
-/// Whether polygon `outer` contains polygon `inner` (tested at its first and middle points).
-fn contains(outer: &[Point], inner: &[Point]) -> bool {
-    point_in_polygon(inner[0], outer) && point_in_polygon(inner[inner.len() / 2], outer)
+/// The region `rings` fill under the even-odd or non-zero rule, as shapes: each an outer ring
+/// followed by its holes, every ring without self-crossings (i_overlay). A ring may still touch
+/// itself at a vertex (a hole pinched onto its outline comes back as one ring visiting the pinch
+/// twice), which [`separate_pinches`] resolves.
+fn filled_region(rings: &[Vec<Point>], even_odd: bool) -> Vec<Vec<Vec<Point>>> {
+    use i_overlay::core::fill_rule::FillRule;
+    use i_overlay::float::simplify::SimplifyShape;
+    let input: Vec<Vec<[f64; 2]>> = rings
+        .iter()
+        .map(|r| r.iter().map(|p| [p.x, p.y]).collect())
+        .collect();
+    if input.iter().flatten().any(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        return Vec::new();
+    }
+    let rule = if even_odd {
+        FillRule::EvenOdd
+    } else {
+        FillRule::NonZero
+    };
+    input
+        .simplify_shape(rule)
+        .into_iter()
+        .map(|shape| {
+            shape
+                .into_iter()
+                .map(|ring| ring.into_iter().map(|[x, y]| Point::new(x, y)).collect())
+                .collect()
+        })
+        .collect()
+}
+
+/// `ring` with every vertex it visits twice (a pinch) split in two: each visit moved by a
+/// hair (a tenth of the flattening `tolerance`) into its own corner of the ring's interior, so
+/// the ring becomes simple and can be a boundary or a feature curve.
+fn separate_pinches(mut ring: Vec<Point>, tolerance: f64) -> Vec<Point> {
+    let n = ring.len();
+    if n < 4 {
+        return ring;
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        ring[a]
+            .x
+            .total_cmp(&ring[b].x)
+            .then(ring[a].y.total_cmp(&ring[b].y))
+    });
+    let repeated: Vec<usize> = order
+        .windows(2)
+        .filter(|w| ring[w[0]] == ring[w[1]])
+        .flat_map(|w| [w[0], w[1]])
+        .collect();
+    if repeated.is_empty() {
+        return ring;
+    }
+    let side = polygon_area(&ring).signum();
+    let step = 0.1 * tolerance.max(1e-12);
+    let original = ring.clone();
+    for k in repeated {
+        let v = original[k];
+        let (prev, next) = (original[(k + n - 1) % n], original[(k + 1) % n]);
+        let (u1, u2) = ((prev - v).normalize_or_zero(), (next - v).normalize_or_zero());
+        let mut d = (u1 + u2).normalize_or_zero();
+        if d == Point::ZERO {
+            d = Point::new(-u2.y, u2.x);
+        }
+        // Inside is to the left of the outgoing edge for a positive ring.
+        if (next - v).perp_dot(d) * side < 0.0 {
+            d = -d;
+        }
+        ring[k] = v + d * step;
+    }
+    ring
 }
 
 fn describe(

@@ -1,43 +1,56 @@
-//! Matched artwork morphing as one shape (issue #6, item 3): when every contour of a source path
-//! is a feature curve whose partners are every contour of one target path, the two paths are
-//! drawn as a single path whose outline is those feature curves in the frame's mesh, with the
-//! fill and stroke colours interpolated in Oklab and opacities and widths linearly — a crisp
-//! geometric transition, not two shapes cross-fading.
+//! Matched artwork morphing as one shape (issues #6 and #7): a source path and a target path
+//! whose shapes pair are drawn, in between, as a single path — the paired outlines and aligned
+//! holes taken from the frame's meshes, the fill and stroke colours interpolated in Oklab and
+//! opacities and widths linearly — a crisp geometric transition, not two shapes cross-fading.
 //!
 //! Gradients interpolate too (module `paint`): their stops, and their geometry carried along by
 //! the outline's motion.
 //!
-//! A hole with no partner on the other side closes (or opens) inside the morphing path: its
-//! outline — its seed feature curve when it has one, else its points carried by the mesh — is
-//! shrunk about its centre by `1 − t` (or grown by `t` for a hole of the target), so at t = 1
-//! it is a point and nothing pops. The mesh keeps it inside the outline (the outline is a
-//! feature curve, which no triangle crosses), so the hole never leaks out of the shape. Why
-//! not a fade: a fading hole is a translucent patch mid-morph; a closing one keeps the shape
-//! crisp, which is what a designer animates by hand (and what shape tweens cannot do, since
-//! they need equal contour counts).
+//! What has no mesh curve of its own still morphs inside the path instead of fading:
+//! - a hole paired with a hole but not aligned as a feature curve is carried by its shape
+//!   (source hole by the source mesh, target hole by the target mesh) and the two are blended
+//!   along their own correspondence, `(1 − t)·A(t) + t·B(t)`, exact at both ends;
+//! - a hole with no partner closes (or opens): carried by its shape and shrunk about its centre
+//!   by `1 − t` (grown by `t`), a point at the far end, so nothing pops;
+//! - a shape with no partner shrinks into (grows out of) a filled point of the nearest paired
+//!   shape, riding that shape's best-fit similarity motion, or where it is when no paired shape
+//!   is near.
 //!
-//! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour
-//! or a gradient of the same kind), no dashes, no shaped pen, and no ancestor group with
-//! opacity or a clip. Anything else keeps the warp-and-blend of the rest of the artwork.
+//! Why not a fade: a fading part is a translucent patch mid-morph; a closing one keeps the shape
+//! crisp, which is what a designer animates by hand (and what shape tweens cannot do, since they
+//! need equal contour counts).
+//!
+//! Rings are written with outlines and holes wound opposite ways and filled by the non-zero
+//! rule, so shapes that overlap mid-morph stay filled and holes stay holes.
+//!
+//! Only plain paths qualify: solid or gradient fills and strokes (a gradient facing a colour or a
+//! gradient of the same kind), no dashes, no shaped pen, and no ancestor group with opacity or a
+//! clip. Anything else keeps the warp-and-blend of the rest of the artwork.
 
 mod paint;
 
 use super::contours::{Contour, ContourKind};
+use super::Matched;
 use crate::artwork::{Fill, Group, Item, Location, Paint, PathItem, PointLocator, Scene, Stroke};
-use crate::geometry::Point;
+use crate::geometry::{polygon_area, Point};
 use crate::mesh::CompatibleMeshes;
 use kurbo::{Affine, BezPath};
 use paint::{compatible, fitted_affine, mix_paint};
+use std::collections::BTreeMap;
 
 /// A source path and a target path that morph as one shape.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MorphingPath {
-    /// Index of the source path in `source_scene.items()`.
-    pub source_item: usize,
-    /// Index of the target path in `target_scene.items()`.
-    pub target_item: usize,
+    /// Index of the source path in `source_scene.items()`; `None` for a target shape with no
+    /// partner growing on its own.
+    pub source_item: Option<usize>,
+    /// Index of the target path in `target_scene.items()`; `None` for a source shape with no
+    /// partner shrinking on its own.
+    pub target_item: Option<usize>,
     /// Indices into the meshes' curves of the outline's contours, in the source path's order.
     pub curves: Vec<usize>,
+    /// For each of `curves`, whether it is a hole (wound against the outlines).
+    curve_holes: Vec<bool>,
     /// The source path's paint (for colours, opacities, widths, caps and joins).
     source: PathItem,
     /// The target path's paint.
@@ -47,47 +60,154 @@ pub struct MorphingPath {
     source_root: Affine,
     /// The same for the target scene.
     target_root: Affine,
-    /// Holes closing (source holes without a partner) or opening (target holes without one).
-    holes: Vec<ShrinkingHole>,
+    /// Rings that morph without a mesh curve of their own (module docs).
+    rings: Vec<Ring>,
+    /// Motions of the shapes that carry rings without a mesh (see [`Rider`]).
+    riders: Vec<Rider>,
+    /// Further source and target items this path draws (shapes without a partner of paths
+    /// that have no morphing path, riding here because their paint is the same).
+    pub(crate) covers: (Vec<usize>, Vec<usize>),
+    /// A path of shapes without a partner only: its stroke width shrinks with them (`Some(true)`,
+    /// by `1 − t`) or grows (`Some(false)`, by `t`), so that a stroke shrunk to a point leaves no
+    /// dot of its caps.
+    sized_stroke: Option<bool>,
 }
 
-/// A hole of a morphing path that has no partner: it closes to a point (a source hole) or
-/// opens from one (a target hole) about its centre (module docs).
+/// A ring's rest points and how they are carried into a frame.
 #[derive(Debug, Clone, PartialEq)]
-struct ShrinkingHole {
-    outline: HoleOutline,
-    /// A source hole (size `1 − t`) rather than a target hole (size `t`).
-    closing: bool,
+enum Place {
+    /// Bound to the mesh the ring was drawn on (source mesh for source rings).
+    Mesh(Vec<Location>),
+    /// Carried by rider `rider`'s similarity motion.
+    Rider(usize, Vec<Point>),
+    /// Where it is.
+    Still(Vec<Point>),
 }
 
-/// Where a shrinking hole's outline comes from in a frame.
-#[derive(Debug, Clone, PartialEq)]
-enum HoleOutline {
-    /// A feature curve of the meshes (a hole matched to a seed spot).
-    Curve(usize),
-    /// Points bound to the source mesh (closing) or the target mesh (opening).
-    Bound(Vec<Location>),
-}
-
-impl ShrinkingHole {
-    /// The hole's outline at `t` in the frame's mesh `vertices`, sized about its centre.
-    fn at(&self, meshes: &CompatibleMeshes, vertices: &[Point], t: f64) -> Vec<Point> {
-        let pts: Vec<Point> = match &self.outline {
-            HoleOutline::Curve(c) => meshes.curves[*c]
-                .vertices
-                .iter()
-                .map(|&v| vertices[v as usize])
-                .collect(),
-            HoleOutline::Bound(locs) => locs
+impl Place {
+    fn at(&self, meshes: &CompatibleMeshes, vertices: &[Point], riders: &[Rider]) -> Vec<Point> {
+        match self {
+            Place::Mesh(locs) => locs
                 .iter()
                 .map(|l| l.place(&meshes.triangles, vertices))
                 .collect(),
-        };
-        let size = if self.closing { 1.0 - t } else { t };
-        let centre = crate::geometry::centroid(&pts);
-        pts.into_iter()
-            .map(|p| centre + (p - centre) * size)
-            .collect()
+            Place::Rider(k, pts) => {
+                let m = riders[*k].motion(vertices);
+                pts.iter().map(|&p| m.apply(p)).collect()
+            }
+            Place::Still(pts) => pts.clone(),
+        }
+    }
+}
+
+/// A shape's motion without a mesh: the similarity that best carries the rest positions of
+/// some of its vertices to where a frame puts them (least squares over rotation, uniform scale
+/// and translation; O(vertices) per frame).
+#[derive(Debug, Clone, PartialEq)]
+struct Rider {
+    vertices: Vec<u32>,
+    rest: Vec<Point>,
+}
+
+/// `q = centre_now + M (p − centre_rest)` with `M = [[a, −b], [b, a]]`.
+#[derive(Debug, Clone, Copy)]
+struct Similarity {
+    from: Point,
+    to: Point,
+    a: f64,
+    b: f64,
+}
+
+impl Similarity {
+    fn apply(&self, p: Point) -> Point {
+        let d = p - self.from;
+        self.to + Point::new(self.a * d.x - self.b * d.y, self.b * d.x + self.a * d.y)
+    }
+}
+
+/// Most vertices a rider fits (evenly spaced along its outline).
+const RIDER_VERTICES: usize = 64;
+
+impl Rider {
+    fn new(curve: &[u32], rest: &[Point]) -> Rider {
+        let n = curve.len();
+        let step = n.div_ceil(RIDER_VERTICES).max(1);
+        let vertices: Vec<u32> = curve.iter().step_by(step).copied().collect();
+        let rest = vertices.iter().map(|&v| rest[v as usize]).collect();
+        Rider { vertices, rest }
+    }
+
+    fn motion(&self, vertices: &[Point]) -> Similarity {
+        let n = self.rest.len().max(1) as f64;
+        let from = self.rest.iter().copied().sum::<Point>() / n;
+        let to = self
+            .vertices
+            .iter()
+            .map(|&v| vertices[v as usize])
+            .sum::<Point>()
+            / n;
+        let (mut a, mut b, mut rr) = (0.0, 0.0, 0.0);
+        for (&r, &v) in self.rest.iter().zip(&self.vertices) {
+            let (r, q) = (r - from, vertices[v as usize] - to);
+            a += r.dot(q);
+            b += r.perp_dot(q);
+            rr += r.length_squared();
+        }
+        if rr > 0.0 {
+            Similarity {
+                from,
+                to,
+                a: a / rr,
+                b: b / rr,
+            }
+        } else {
+            Similarity {
+                from,
+                to,
+                a: 1.0,
+                b: 0.0,
+            }
+        }
+    }
+}
+
+/// A ring of the path that has no mesh curve of its own (module docs).
+#[derive(Debug, Clone, PartialEq)]
+enum Ring {
+    /// A paired hole not aligned as a feature: source and target rings, point for point,
+    /// blended `(1 − t)·A + t·B`.
+    Blended { source: Place, target: Place },
+    /// A ring shrinking (`closing`, size `1 − t`) or growing (size `t`) about `centre`, or
+    /// about its own centroid when `centre` is `None` (a hole without a partner).
+    Sized {
+        ring: Place,
+        centre: Option<Place>,
+        closing: bool,
+        hole: bool,
+        closed: bool,
+    },
+}
+
+/// A polyline's orientation set: positive signed area for an outline, negative for a hole.
+fn oriented(mut pts: Vec<Point>, hole: bool) -> Vec<Point> {
+    let a = polygon_area(&pts);
+    if (a < 0.0) != hole && a != 0.0 {
+        pts.reverse();
+    }
+    pts
+}
+
+fn push_ring(path: &mut BezPath, pts: &[Point], closed: bool) {
+    for (k, p) in pts.iter().enumerate() {
+        let q = kurbo::Point::new(p.x, p.y);
+        if k == 0 {
+            path.move_to(q);
+        } else {
+            path.line_to(q);
+        }
+    }
+    if closed && !pts.is_empty() {
+        path.close_path();
     }
 }
 
@@ -95,34 +215,40 @@ impl MorphingPath {
     /// The path at `t` whose mesh is `vertices`.
     pub fn at(&self, meshes: &CompatibleMeshes, vertices: &[Point], t: f64) -> PathItem {
         let mut path = BezPath::new();
-        for &c in &self.curves {
+        for (&c, &hole) in self.curves.iter().zip(&self.curve_holes) {
             let curve = &meshes.curves[c];
-            for (k, &v) in curve.vertices.iter().enumerate() {
-                let p = vertices[v as usize];
-                let q = kurbo::Point::new(p.x, p.y);
-                if k == 0 {
-                    path.move_to(q);
-                } else {
-                    path.line_to(q);
-                }
-            }
-            if curve.closed {
-                path.close_path();
-            }
+            let pts: Vec<Point> = curve.vertices.iter().map(|&v| vertices[v as usize]).collect();
+            let pts = if curve.closed { oriented(pts, hole) } else { pts };
+            push_ring(&mut path, &pts, curve.closed);
         }
-        // Every frame has the same subpaths (the animated SVG animates one `d`); a hole of
+        // Every frame has the same subpaths (the animated SVG animates one `d`); a ring of
         // size 0 paints nothing.
-        for hole in &self.holes {
-            let pts = hole.at(meshes, vertices, t);
-            for (k, p) in pts.iter().enumerate() {
-                let q = kurbo::Point::new(p.x, p.y);
-                if k == 0 {
-                    path.move_to(q);
-                } else {
-                    path.line_to(q);
+        for ring in &self.rings {
+            match ring {
+                Ring::Blended { source, target } => {
+                    let a = source.at(meshes, vertices, &self.riders);
+                    let b = target.at(meshes, vertices, &self.riders);
+                    let pts: Vec<Point> = a.iter().zip(&b).map(|(p, q)| *p + (*q - *p) * t).collect();
+                    push_ring(&mut path, &oriented(pts, true), true);
+                }
+                Ring::Sized {
+                    ring,
+                    centre,
+                    closing,
+                    hole,
+                    closed,
+                } => {
+                    let pts = ring.at(meshes, vertices, &self.riders);
+                    let size = if *closing { 1.0 - t } else { t };
+                    let c = match centre {
+                        Some(c) => c.at(meshes, vertices, &self.riders)[0],
+                        None => crate::geometry::centroid(&pts),
+                    };
+                    let pts: Vec<Point> = pts.into_iter().map(|p| c + (p - c) * size).collect();
+                    let pts = if *closed { oriented(pts, *hole) } else { pts };
+                    push_ring(&mut path, &pts, *closed);
                 }
             }
-            path.close_path();
         }
         let lerp = |a: f64, b: f64| a + (b - a) * t;
         // Gradients ride with the outline: each side's by the affine map that best carries
@@ -152,15 +278,20 @@ impl MorphingPath {
             (Some(a), Some(b)) => Some(Fill {
                 paint: colour(&a.paint, &b.paint),
                 opacity: lerp(a.opacity, b.opacity),
-                even_odd: true,
+                even_odd: false,
             }),
             _ => None,
+        };
+        let size = match self.sized_stroke {
+            Some(true) => 1.0 - t,
+            Some(false) => t,
+            None => 1.0,
         };
         let stroke = match (&self.source.stroke, &self.target.stroke) {
             (Some(a), Some(b)) => Some(Stroke {
                 paint: colour(&a.paint, &b.paint),
                 opacity: lerp(a.opacity, b.opacity),
-                width: lerp(a.width, b.width),
+                width: lerp(a.width, b.width) * size,
                 miter_limit: lerp(a.miter_limit, b.miter_limit),
                 ..a.clone()
             }),
@@ -232,104 +363,262 @@ fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
     out
 }
 
-/// The morphing paths among matched contours. `pairs` are the features made, `(name, source
-/// contour, target contour)`; their mesh curves are named `feature-NAME`.
+/// Resamples two closed rings to the same number of points by arc length, the second started
+/// where it best fits the first (after moving both centroids together) and wound the same way:
+/// the correspondence of a paired hole that is not a feature curve.
+fn paired_rings(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>) {
+    let n = a.len().max(b.len()).clamp(8, 512);
+    let resample = |r: &[Point]| -> Vec<Point> {
+        let r = oriented(r.to_vec(), false);
+        let m = r.len();
+        let lens: Vec<f64> = (0..m).map(|i| r[i].distance(r[(i + 1) % m])).collect();
+        let total: f64 = lens.iter().sum();
+        let mut out = Vec::with_capacity(n);
+        let (mut i, mut acc) = (0usize, 0.0);
+        for k in 0..n {
+            let s = total * k as f64 / n as f64;
+            while i + 1 < m && acc + lens[i] < s {
+                acc += lens[i];
+                i += 1;
+            }
+            let u = if lens[i] > 0.0 { ((s - acc) / lens[i]).clamp(0.0, 1.0) } else { 0.0 };
+            out.push(r[i] + (r[(i + 1) % m] - r[i]) * u);
+        }
+        out
+    };
+    let (ra, rb) = (resample(a), resample(b));
+    let (ca, cb) = (crate::geometry::centroid(&ra), crate::geometry::centroid(&rb));
+    let shift = (0..n)
+        .min_by(|&x, &y| {
+            let cost = |s: usize| -> f64 {
+                (0..n)
+                    .map(|i| ((ra[i] - ca) - (rb[(i + s) % n] - cb)).length_squared())
+                    .sum()
+            };
+            cost(x).total_cmp(&cost(y))
+        })
+        .unwrap_or(0);
+    let rb = (0..n).map(|i| rb[(i + shift) % n]).collect();
+    (ra, rb)
+}
+
+/// One morphing path being gathered: the parts of one source path and one target path.
+#[derive(Default)]
+struct Gathered {
+    curves: Vec<usize>,
+    curve_holes: Vec<bool>,
+    rings: Vec<Ring>,
+    riders: Vec<Rider>,
+    covers: (Vec<usize>, Vec<usize>),
+    /// The parts drawn (indices into `Matched::plans`).
+    parts: Vec<usize>,
+}
+
+impl Gathered {
+    /// Whether this path draws only shapes without a partner (no paired part).
+    fn alone(&self) -> bool {
+        self.parts.is_empty()
+    }
+}
+
+/// The morphing paths of automatic mode: one per pair (source path, target path) that has
+/// paired shapes, with its holes, carried holes and the shapes without a partner that ride in
+/// it (module docs).
 pub(crate) fn morphing_paths(
     source_scene: &Scene,
     target_scene: &Scene,
     cs: &[Contour],
     ct: &[Contour],
-    pairs: &[(String, usize, usize)],
+    matched: &Matched,
     meshes: &CompatibleMeshes,
 ) -> Vec<MorphingPath> {
     let (ps, pt) = (plain_paths(source_scene), plain_paths(target_scene));
-    let curve_of = |name: &str| {
-        meshes
-            .curves
-            .iter()
-            .position(|c| c.name == format!("feature-{name}"))
-    };
-    let locators = (
-        PointLocator::new(&meshes.source, &meshes.triangles).ok(),
-        PointLocator::new(&meshes.target, &meshes.triangles).ok(),
-    );
-    // A hole without a partner: its seed curve, or its points bound in its own mesh.
-    let lone_hole = |c: &Contour, pair: Option<&(String, usize, usize)>, closing: bool| {
-        if c.kind != ContourKind::Hole {
+    let of_triangle = meshes.parts.as_ref().map(|p| p.of_triangle.as_slice()).unwrap_or(&[]);
+    // A locator over one part's triangles, on one side.
+    let locate = |k: usize, source: bool, pts: &[Point]| -> Option<Place> {
+        let m = &matched.parts[k].meshes;
+        if m.triangles.is_empty() {
             return None;
         }
-        let outline = match pair {
-            Some(p) => HoleOutline::Curve(curve_of(&p.0)?),
-            None => {
-                let locator = if closing { &locators.0 } else { &locators.1 };
-                HoleOutline::Bound(
-                    c.points
-                        .iter()
-                        .map(|&q| locator.as_ref().map(|l| l.locate(q)))
-                        .collect::<Option<_>>()?,
-                )
-            }
-        };
-        Some(ShrinkingHole { outline, closing })
+        let rest = if source { &meshes.source } else { &meshes.target };
+        let l = PointLocator::of_triangles(rest, &meshes.triangles, |i| {
+            of_triangle.get(i) == Some(&(k as u32))
+        })
+        .ok()?;
+        Some(Place::Mesh(pts.iter().map(|&p| l.locate(p)).collect()))
     };
-    let mut out = Vec::new();
-    let mut items: Vec<usize> = cs.iter().map(|c| c.path).collect();
-    items.sort_unstable();
-    items.dedup();
-    'paths: for i in items {
-        // Source contours: a real partner (its curve), or a lone hole that will close.
-        let mut partners: Vec<(usize, usize)> = Vec::new();
-        let mut holes = Vec::new();
-        for k in (0..cs.len()).filter(|&k| cs[k].path == i) {
-            let pair = pairs.iter().find(|p| p.1 == k);
-            match pair {
-                Some(p) if p.2 != usize::MAX => match curve_of(&p.0) {
-                    Some(c) => partners.push((p.2, c)),
-                    None => match lone_hole(&cs[k], None, true) {
-                        Some(h) => holes.push(h),
-                        None => continue 'paths,
-                    },
-                },
-                _ => match lone_hole(&cs[k], pair, true) {
-                    Some(h) => holes.push(h),
-                    None => continue 'paths,
-                },
-            }
-        }
-        let Some(j) = partners.first().map(|p| ct[p.0].path) else {
-            continue;
-        };
-        if partners.iter().any(|p| ct[p.0].path != j) {
-            continue;
-        }
-        // Target contours of path j: a partner, or a lone hole that will open.
-        for k in (0..ct.len()).filter(|&k| ct[k].path == j) {
-            if partners.iter().any(|p| p.0 == k) {
-                continue;
-            }
-            let seed = pairs.iter().find(|p| p.2 == k && p.1 == usize::MAX);
-            match lone_hole(&ct[k], seed, false) {
-                Some(h) => holes.push(h),
-                None => continue 'paths,
-            }
-        }
+    // A rider on part k's outline, on one side.
+    let rider_of = |k: usize, source: bool| -> Rider {
+        let c = &meshes.curves[matched.curve_offset[k]];
+        Rider::new(&c.vertices, if source { &meshes.source } else { &meshes.target })
+    };
+    let mut groups: BTreeMap<(Option<usize>, Option<usize>), Gathered> = BTreeMap::new();
+    for (k, plan) in matched.plans.iter().enumerate() {
+        let (i, j) = (cs[plan.source].path, ct[plan.target].path);
         let (Some(Some(a)), Some(Some(b))) = (ps.get(i), pt.get(j)) else {
             continue;
         };
-        if paints_interpolate(a, b) {
-            out.push(MorphingPath {
+        if !paints_interpolate(a, b) {
+            continue;
+        }
+        let part = &matched.parts[k];
+        let g = groups.entry((Some(i), Some(j))).or_default();
+        g.parts.push(k);
+        let first = matched.curve_offset[k];
+        g.curves.push(first);
+        g.curve_holes.push(false);
+        for &(_, c) in &part.features {
+            g.curves.push(first + c);
+            g.curve_holes.push(true);
+        }
+        // Places for rings of this part: its mesh, else a rider on its outline.
+        let mut place = |g: &mut Gathered, source: bool, pts: &[Point]| -> Place {
+            locate(k, source, pts).unwrap_or_else(|| {
+                g.riders.push(rider_of(k, source));
+                Place::Rider(g.riders.len() - 1, pts.to_vec())
+            })
+        };
+        for &(h, hh) in &plan.holes {
+            if part.features.iter().any(|f| f.0 == (h, hh)) {
+                continue;
+            }
+            let (ra, rb) = paired_rings(&cs[h].points, &ct[hh].points);
+            let source = place(g, true, &ra);
+            let target = place(g, false, &rb);
+            g.rings.push(Ring::Blended { source, target });
+        }
+        for (contours, outline, source) in [(cs, plan.source, true), (ct, plan.target, false)] {
+            for (h, c) in contours.iter().enumerate() {
+                let paired = plan.holes.iter().any(|p| if source { p.0 == h } else { p.1 == h });
+                if c.parent != Some(outline) || paired {
+                    continue;
+                }
+                let ring = place(g, source, &c.points);
+                g.rings.push(Ring::Sized {
+                    ring,
+                    centre: None,
+                    closing: source,
+                    hole: true,
+                    closed: true,
+                });
+            }
+        }
+    }
+    // Shapes without a partner: into their own path's morphing path, else into the host's
+    // when the paint is the same.
+    for lone in &matched.lone {
+        let contours = if lone.source { cs } else { ct };
+        let item = contours[lone.contour].path;
+        let own = groups
+            .keys()
+            .copied()
+            .filter(|&(i, j)| if lone.source { i == Some(item) } else { j == Some(item) })
+            .min_by_key(|key| {
+                // Prefer the group holding the host part.
+                let holds = lone
+                    .host
+                    .is_some_and(|(k, _)| groups[key].parts.contains(&k));
+                !holds
+            });
+        let paths = if lone.source { &ps } else { &pt };
+        let Some(Some(mine)) = paths.get(item) else {
+            continue;
+        };
+        let host_key = lone.host.and_then(|(k, _)| {
+            let key = *groups.keys().find(|key| groups[key].parts.contains(&k))?;
+            let theirs = paths.get((if lone.source { key.0 } else { key.1 })?)?.as_ref()?;
+            same_paint(mine, theirs).then_some(key)
+        });
+        // Else on its own: the path shrinks away (grows) in its own paint.
+        let alone = if lone.source {
+            (Some(item), None)
+        } else {
+            (None, Some(item))
+        };
+        // A stroke without a partner always goes on its own, so that its width can shrink with
+        // it.
+        let stroke = contours[lone.contour].kind == ContourKind::Stroke;
+        let key = if stroke {
+            alone
+        } else {
+            own.or(host_key).unwrap_or(alone)
+        };
+        let joins = key != alone && own.is_none() && host_key.is_some();
+        let g = groups.entry(key).or_default();
+        if joins {
+            if lone.source {
+                g.covers.0.push(item);
+            } else {
+                g.covers.1.push(item);
+            }
+        }
+        let (place_of, centre): (Box<dyn Fn(&[Point]) -> Place>, Option<Place>) = match lone.host {
+            Some((k, c)) => {
+                g.riders.push(rider_of(k, lone.source));
+                let r = g.riders.len() - 1;
+                (
+                    Box::new(move |pts: &[Point]| Place::Rider(r, pts.to_vec())),
+                    Some(Place::Rider(r, vec![c])),
+                )
+            }
+            None => (
+                Box::new(|pts: &[Point]| Place::Still(pts.to_vec())),
+                Some(Place::Still(vec![contours[lone.contour].centroid])),
+            ),
+        };
+        let outline = &contours[lone.contour];
+        g.rings.push(Ring::Sized {
+            ring: place_of(&outline.points),
+            centre: centre.clone(),
+            closing: lone.source,
+            hole: false,
+            closed: outline.closed,
+        });
+        for &h in &lone.holes {
+            g.rings.push(Ring::Sized {
+                ring: place_of(&contours[h].points),
+                centre: centre.clone(),
+                closing: lone.source,
+                hole: true,
+                closed: true,
+            });
+        }
+    }
+    let out = groups
+        .into_iter()
+        .filter_map(|((i, j), g)| {
+            let sized_stroke = g.alone().then_some(i.is_some());
+            let a = i.and_then(|i| ps.get(i)?.as_ref());
+            let b = j.and_then(|j| pt.get(j)?.as_ref());
+            let (a, b) = match (a, b) {
+                (Some(a), Some(b)) => (a, b),
+                (Some(a), None) => (a, a),
+                (None, Some(b)) => (b, b),
+                (None, None) => return None,
+            };
+            Some(MorphingPath {
                 source_item: i,
                 target_item: j,
-                curves: partners.iter().map(|p| p.1).collect(),
+                curves: g.curves,
+                curve_holes: g.curve_holes,
                 source: a.clone(),
                 target: b.clone(),
                 source_root: source_scene.root_transform,
                 target_root: target_scene.root_transform,
-                holes,
-            });
-        }
-    }
+                rings: g.rings,
+                riders: g.riders,
+                covers: g.covers,
+                sized_stroke,
+            })
+        })
+        .collect();
     in_paint_order(out)
+}
+
+/// Whether two paths paint the same (fill and stroke), so that a shape of one may be drawn
+/// with the other.
+fn same_paint(a: &PathItem, b: &PathItem) -> bool {
+    a.fill == b.fill && a.stroke == b.stroke
 }
 
 /// Whether two paths' paints can interpolate: fill with fill and stroke with stroke, each pair
@@ -377,35 +666,53 @@ pub fn named_morphing_paths(
         };
         if k < compatible.meshes.curves.len() && paints_interpolate(a, b) {
             out.push(MorphingPath {
-                source_item: i,
-                target_item: j,
+                source_item: Some(i),
+                target_item: Some(j),
                 curves: vec![k],
                 source: a.clone(),
                 target: b.clone(),
                 source_root: source_scene.root_transform,
                 target_root: target_scene.root_transform,
-                holes: Vec::new(),
+                curve_holes: vec![false],
+                rings: Vec::new(),
+                riders: Vec::new(),
+                covers: (Vec::new(), Vec::new()),
+                sized_stroke: None,
             });
         }
     }
     in_paint_order(out)
 }
 
-/// The largest subset of `paths` whose paint order is the same in both drawings, sorted by
-/// source item: a longest strictly increasing subsequence of the target items taken in source
-/// order (earliest-ending choice on ties, so the result is deterministic). In-between frames
-/// interleave morphing paths with the blended rest of the artwork in one stack
-/// ([`crate::export::Morph`]), which needs one order; the paths left out cross-fade with the
-/// rest instead.
-pub(crate) fn in_paint_order(mut paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
-    paths.sort_by_key(|p| p.source_item);
-    // tails[k]: index of the path ending the best increasing run of length k + 1 found so far
-    // (the one with the smallest target item); back[i]: the path before i in its run.
+/// `paths` in one paint order for the in-between frames, which interleave morphing paths with
+/// the blended rest of the artwork in one stack ([`crate::export::Morph`]): the largest subset
+/// of the paths with items on both sides whose order is the same in both drawings (a longest
+/// non-decreasing subsequence of the target items taken in source order, earliest-ending
+/// choice on ties, so the result is deterministic) — all of them when they share one paint,
+/// whose order shows nowhere — with the one-sided paths (shapes without a partner) placed by
+/// their own side's order. The paired paths left out cross-fade with the rest instead.
+pub(crate) fn in_paint_order(paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
+    let (mut both, one): (Vec<MorphingPath>, Vec<MorphingPath>) = paths
+        .into_iter()
+        .partition(|p| p.source_item.is_some() && p.target_item.is_some());
+    both.sort_by_key(|p| (p.source_item, p.target_item));
+    // Paths of one paint (a monochrome icon) may pass each other: their order shows nowhere.
+    let one_paint = both.windows(2).all(|w| {
+        let (a, b) = (&w[0], &w[1]);
+        same_paint(&a.source, &b.source) && same_paint(&a.target, &b.target)
+    }) && both
+        .iter()
+        .all(|p| same_paint(&p.source, &p.target) || both.len() == 1);
+    // tails[k]: index of the path ending the best non-decreasing run of length k + 1 found so
+    // far (the one with the smallest target item); back[i]: the path before i in its run.
     let mut tails: Vec<usize> = Vec::new();
-    let mut back: Vec<Option<usize>> = vec![None; paths.len()];
-    for i in 0..paths.len() {
-        let key = paths[i].target_item;
-        let k = tails.partition_point(|&j| paths[j].target_item < key);
+    let mut back: Vec<Option<usize>> = vec![None; both.len()];
+    for i in 0..both.len() {
+        let key = if one_paint { None } else { both[i].target_item };
+        let k = tails.partition_point(|&j| {
+            let theirs = if one_paint { None } else { both[j].target_item };
+            theirs <= key
+        });
         back[i] = k.checked_sub(1).map(|k| tails[k]);
         if k == tails.len() {
             tails.push(i);
@@ -413,17 +720,35 @@ pub(crate) fn in_paint_order(mut paths: Vec<MorphingPath>) -> Vec<MorphingPath> 
             tails[k] = i;
         }
     }
-    let mut keep = vec![false; paths.len()];
+    let mut keep = vec![false; both.len()];
     let mut at = tails.last().copied();
     while let Some(i) = at {
         keep[i] = true;
         at = back[i];
     }
-    paths
+    let mut out: Vec<MorphingPath> = both
         .into_iter()
         .zip(keep)
         .filter_map(|(p, k)| k.then_some(p))
-        .collect()
+        .collect();
+    // One-sided paths go after the last path drawn before them on their side.
+    let mut one = one;
+    one.sort_by_key(|p| (p.source_item, p.target_item));
+    for p in one {
+        let at = match (p.source_item, p.target_item) {
+            (Some(i), _) => out
+                .iter()
+                .rposition(|q| q.source_item.is_some_and(|s| s < i))
+                .map_or(0, |k| k + 1),
+            (_, Some(j)) => out
+                .iter()
+                .rposition(|q| q.target_item.is_some_and(|s| s < j))
+                .map_or(0, |k| k + 1),
+            _ => out.len(),
+        };
+        out.insert(at, p);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -431,6 +756,7 @@ mod tests {
     use super::*;
 
     fn path(source_item: usize, target_item: usize) -> MorphingPath {
+        let (source_item, target_item) = (Some(source_item), Some(target_item));
         let p = PathItem {
             id: String::new(),
             path: BezPath::new(),
@@ -446,7 +772,11 @@ mod tests {
             target: p,
             source_root: Affine::IDENTITY,
             target_root: Affine::IDENTITY,
-            holes: Vec::new(),
+            curve_holes: Vec::new(),
+            rings: Vec::new(),
+            riders: Vec::new(),
+            covers: (Vec::new(), Vec::new()),
+            sized_stroke: None,
         }
     }
 
@@ -454,7 +784,7 @@ mod tests {
         let paths = pairs.iter().map(|&(s, t)| path(s, t)).collect();
         in_paint_order(paths)
             .iter()
-            .map(|p| (p.source_item, p.target_item))
+            .map(|p| (p.source_item.unwrap(), p.target_item.unwrap()))
             .collect()
     }
 

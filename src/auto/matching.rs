@@ -52,12 +52,32 @@ pub fn match_contours(
     target: &[Contour],
     diagonal: f64,
 ) -> Vec<(usize, usize)> {
+    matched(source, target, diagonal, LEAVE)
+}
+
+/// Like [`match_contours`], but outlines and strokes pair as many as they can: of n source and
+/// m target outlines, min(n, m) pairs are made, the cheapest assignment of them (holes still
+/// stay unpaired above [`LEAVE`]). Automatic mode morphs every shape it can into another
+/// rather than fading it; the shapes left over grow or shrink.
+pub fn match_shapes(source: &[Contour], target: &[Contour], diagonal: f64) -> Vec<(usize, usize)> {
+    matched(source, target, diagonal, OUTLINE_LEAVE)
+}
+
+/// Cost of leaving an outline or stroke unpaired in [`match_shapes`]: above any real pair's.
+const OUTLINE_LEAVE: f64 = 1e3;
+
+fn matched(
+    source: &[Contour],
+    target: &[Contour],
+    diagonal: f64,
+    leave: f64,
+) -> Vec<(usize, usize)> {
     let tops = |c: &[Contour]| -> Vec<usize> {
         (0..c.len())
             .filter(|&i| c[i].kind != ContourKind::Hole)
             .collect()
     };
-    let mut pairs = assign(source, target, &tops(source), &tops(target), diagonal);
+    let mut pairs = assign(source, target, &tops(source), &tops(target), diagonal, leave);
     // Holes, within each pair of matched outlines.
     let outer: Vec<(usize, usize)> = pairs.clone();
     for (a, b) in outer {
@@ -72,6 +92,7 @@ pub fn match_contours(
             &holes(source, a),
             &holes(target, b),
             diagonal,
+            LEAVE,
         ));
     }
     pairs.sort_unstable();
@@ -79,13 +100,14 @@ pub fn match_contours(
 }
 
 /// Optimal assignment between the listed contours, each free to stay unmatched at cost
-/// [`LEAVE`].
+/// `leave`.
 fn assign(
     source: &[Contour],
     target: &[Contour],
     rows: &[usize],
     cols: &[usize],
     diagonal: f64,
+    leave: f64,
 ) -> Vec<(usize, usize)> {
     let (r, c) = (rows.len(), cols.len());
     if r == 0 || c == 0 {
@@ -93,7 +115,7 @@ fn assign(
     }
     // Square (r + c): real pairs, "leave unmatched" on the padding.
     let n = r + c;
-    let leave = (LEAVE * SCALE) as i64;
+    let leave = (leave * SCALE) as i64;
     let never = 4 * leave;
     let mut m = Matrix::new(n, n, 0i64);
     for i in 0..n {

@@ -1,44 +1,82 @@
-//! Automatic mode: icon and logo transitions from plain SVGs with no markup (issue #6; the paper
-//! leaves the extraction of feature curves to future work).
+//! Automatic mode: icon and logo transitions from plain SVGs with no markup (issues #6 and #7;
+//! the paper leaves the extraction of feature curves to future work).
 //!
 //! When neither drawing has a `boundary` or any `feature-NAME`, crmorph makes the control
-//! geometry itself:
-//! - the domain boundary is the viewBox rectangle of each drawing, padded by 5 % of its larger
-//!   side so that artwork touching the edge stays inside;
-//! - the artwork's contours ([`contours`](mod@contours): fill outlines, their holes, stroke centre lines) are
-//!   matched across the drawings ([`matching`]) and every matched pair becomes a feature curve
-//!   `feature-auto-K` in both;
-//! - a pair that cannot be a feature — it crosses another feature, itself, or the boundary, or the
-//!   composite mapping cannot keep it flip-free (the paper's Fig.16) — is dropped, the fewest
-//!   needed, and reported; its artwork is still warped and blended. The morph never fails
-//!   because of a feature it chose itself.
+//! geometry itself, one CR-Morph problem per shape:
+//!
+//! 1. [`contours`](mod@contours): every filled path's region by its fill rule — overlapping
+//!    subpaths merged, self-crossings resolved — as shapes (an outline and its holes), and
+//!    every stroke-only path's centre lines.
+//! 2. [`matching`]: outlines pair with outlines and strokes with strokes, as many as can
+//!    (an optimal assignment on position, size and elongation); holes pair within paired
+//!    outlines.
+//! 3. [`part`]: each pair of outlines is its own problem — the outline is the boundary, the
+//!    paired holes are feature curves — climbing a ladder from the paper's compatible
+//!    triangulation (§5) down to one that always exists, so a pair always morphs as one shape.
+//!    A pair of strokes moves as a chain of discs along its centre line.
+//! 4. [`union`](mod@union): the shapes' meshes become one pair of meshes with
+//!    [`crate::mesh::Parts`], plus a still frame that artwork outside every shape is bound to.
+//!    The disc-based rigid interpolation moves the shapes as one figure (their centroids along
+//!    the barycenter mesh's rigid path, §5 Fig. 9, and their turns on one branch).
+//! 5. [`geometric`]: each source path and target path whose shapes pair morph as one path;
+//!    shapes without a partner grow out of or shrink into the nearest paired shape, holes
+//!    without one close or open, and only what cannot morph (groups with opacity, images,
+//!    dashed strokes) is warped and blended.
 
 pub mod contours;
 pub mod geometric;
 pub mod matching;
+pub mod part;
 mod seed;
+mod union;
 
-use crate::artwork::Scene;
-use crate::compatible::{build, Compatible, MorphOptions};
-use crate::drawing::{ControlCurve, Drawing};
-use crate::error::{Error, Result};
+use crate::artwork::{Item, Scene};
+use crate::compatible::{common_tolerances, Compatible, MorphOptions};
+use crate::drawing::Drawing;
+use crate::error::Result;
 use crate::geometry::Point;
-use crate::mesh::CurveKind;
-use contours::{contours, Contour};
+use contours::{contours, Contour, ContourKind};
+use part::{build_part, PartInputs, PartMesh, PartPlan, Rung};
+use rayon::prelude::*;
 
-/// Padding of the automatic boundary around the viewBox, as a fraction of its larger side.
+/// Padding of the still frame around the two view boxes, as a fraction of their larger side.
 const PADDING: f64 = 0.05;
+
+/// A shape without a partner farther than this fraction of the drawing's diagonal from every
+/// paired shape grows or shrinks where it is instead of into one of them.
+const HOST_REACH: f64 = 0.15;
+
+/// How one pair of shapes morphs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeReport {
+    /// The source shape, named as a user would: its element's id, or "path N at (x, y)".
+    pub source: String,
+    /// The target shape.
+    pub target: String,
+    /// The rung of the ladder its compatible meshes come from ([`part`]).
+    pub rung: Rung,
+}
+
+/// A shape with no partner, and what it does.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoneReport {
+    /// The shape, named as a user would.
+    pub shape: String,
+    /// A source shape (it shrinks away) rather than a target shape (it grows).
+    pub shrinks: bool,
+    /// The paired shape it shrinks into or grows out of; `None`: in place.
+    pub host: Option<String>,
+}
 
 /// What automatic mode did, for the user.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct AutoReport {
     /// Contours found in the source and the target.
     pub contours: (usize, usize),
-    /// Feature names made, with the source and target contour indices (`usize::MAX` for a seed:
-    /// a hole closing to, or opening from, a small spot).
-    pub features: Vec<(String, usize, usize)>,
-    /// Features dropped, with the reason.
-    pub dropped: Vec<(String, String)>,
+    /// Every pair of shapes (outlines with their holes, or strokes) that morph into each other.
+    pub shapes: Vec<ShapeReport>,
+    /// Shapes without a partner.
+    pub lone: Vec<LoneReport>,
     /// Artwork paths that morph as one shape ([`geometric`]).
     pub morphing: Vec<geometric::MorphingPath>,
 }
@@ -47,24 +85,34 @@ impl std::fmt::Display for AutoReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "automatic mode: {} source and {} target contours, {} matched as feature curves",
+            "automatic mode: {} source and {} target contours; {} shape{} morph",
             self.contours.0,
             self.contours.1,
-            self.features.len()
+            self.shapes.len(),
+            if self.shapes.len() == 1 { "" } else { "s" }
         )?;
-        let seeds = self
-            .features
-            .iter()
-            .filter(|f| f.1 == usize::MAX || f.2 == usize::MAX)
-            .count();
-        if seeds > 0 {
-            write!(f, " ({seeds} of them holes closing or opening)")?;
+        for (k, s) in self.shapes.iter().enumerate() {
+            let sep = if k == 0 { " (" } else { "; " };
+            write!(f, "{sep}{} → {}: {}", s.source, s.target, s.rung)?;
         }
-        if !self.morphing.is_empty() {
-            write!(f, "; {} paths morph as one shape", self.morphing.len())?;
+        if !self.shapes.is_empty() {
+            f.write_str(")")?;
         }
-        for (name, why) in &self.dropped {
-            write!(f, "; dropped feature-{name} ({why})")?;
+        for l in &self.lone {
+            let verb = if l.shrinks { "shrinks into" } else { "grows out of" };
+            match &l.host {
+                Some(h) => write!(f, "; {} {verb} {h}", l.shape)?,
+                None => write!(
+                    f,
+                    "; {} {} in place",
+                    l.shape,
+                    if l.shrinks { "shrinks" } else { "grows" }
+                )?,
+            }
+        }
+        let blended = self.morphing.is_empty() && !self.shapes.is_empty();
+        if blended {
+            f.write_str("; its paths cannot morph as shapes and are blended")?;
         }
         Ok(())
     }
@@ -75,9 +123,38 @@ pub fn is_unmarked(d: &Drawing) -> bool {
     d.controls.boundary_from_view_box && d.controls.features.is_empty()
 }
 
+/// A shape without a partner: its outline (or stroke) and holes, on one side, and the paired
+/// shape it grows out of or shrinks into.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Lone {
+    /// Index of the outline (or stroke) contour.
+    pub(crate) contour: usize,
+    /// Its holes.
+    pub(crate) holes: Vec<usize>,
+    /// A source shape (shrinking) rather than a target shape (growing).
+    pub(crate) source: bool,
+    /// The index of the part it goes into or comes out of, and the point in that part's rest
+    /// shape (source side for a source shape) it shrinks into; `None`: in place, about its own
+    /// centroid.
+    pub(crate) host: Option<(usize, Point)>,
+}
+
+/// Everything automatic mode matched, for [`geometric`]: the parts (pairs of shapes) with
+/// their meshes, where they sit in the union, and the shapes without a partner.
+#[derive(Debug, Clone)]
+pub(crate) struct Matched {
+    pub(crate) plans: Vec<PartPlan>,
+    pub(crate) parts: Vec<PartMesh>,
+    pub(crate) vertex_offset: Vec<u32>,
+    pub(crate) curve_offset: Vec<usize>,
+    pub(crate) lone: Vec<Lone>,
+}
+
 /// Gives two unmarked drawings automatic control geometry from their artwork scenes and builds
-/// their compatible triangulation, dropping features that cannot be kept. Errors only when even
-/// the boundaries alone cannot be mapped.
+/// their compatible triangulation: one per pair of shapes, joined with a still frame
+/// (module docs). Every pair of shapes morphs; errors only on degenerate input.
+///
+/// Returns the meshes, the report, and the two drawings.
 pub fn build_auto(
     source: &Drawing,
     target: &Drawing,
@@ -85,303 +162,260 @@ pub fn build_auto(
     target_scene: &Scene,
     opts: &MorphOptions,
 ) -> Result<(Compatible, AutoReport, Drawing, Drawing)> {
-    let (mut s, mut t) = (source.clone(), target.clone());
-    pad_boundary(&mut s);
-    pad_boundary(&mut t);
-    let tol = s.tolerances.flatten.min(t.tolerances.flatten);
+    let tol = source.tolerances.flatten.min(target.tolerances.flatten);
     let (cs, ct) = (contours(source_scene, tol), contours(target_scene, tol));
-    let diagonal = s.tolerances.diagonal.max(t.tolerances.diagonal);
-    let pairs = matching::match_contours(&cs, &ct, diagonal);
-    let mut report = AutoReport {
-        contours: (cs.len(), ct.len()),
-        ..AutoReport::default()
-    };
-    // Straight runs are split finely, so that the correspondence may start a closed contour
-    // anywhere along them, not only at a corner (a circle → square pair would otherwise turn by
-    // the angle to the nearest corner).
-    let step = s.tolerances.max_edge.min(t.tolerances.max_edge) * 0.5;
-    for (k, &(a, b)) in pairs.iter().enumerate() {
-        let name = format!("auto-{k}");
-        s.controls.features.push(feature(&name, &cs[a], step));
-        t.controls.features.push(feature(&name, &ct[b], step));
-        report.features.push((name, a, b));
-    }
-    // A hole with no partner inside a matched outline closes to a small spot (or opens from
-    // one): a seed contour on the other side, where the outline pair carries the hole's centre.
-    let mut k = report.features.len();
-    for (holes, others, forward) in [(&cs, &ct, true), (&ct, &cs, false)] {
-        for (h, hole) in holes.iter().enumerate() {
-            let Some(parent) = hole.parent else { continue };
-            let taken = report
-                .features
-                .iter()
-                .any(|f| if forward { f.1 == h } else { f.2 == h });
-            let partner = report.features.iter().find_map(|f| {
-                let (mine, theirs) = if forward { (f.1, f.2) } else { (f.2, f.1) };
-                (mine == parent).then_some(theirs)
-            });
-            let (Some(other_parent), false) = (partner, taken) else {
-                continue;
-            };
-            let (pa, pb) = (&holes[parent], &others[other_parent]);
-            let scale = (pb.area / pa.area.max(1e-300)).sqrt();
-            let want = pb.centroid + (hole.centroid - pa.centroid) * scale;
-            let their_holes: Vec<&Contour> = others
-                .iter()
-                .filter(|c| c.parent == Some(other_parent))
-                .collect();
-            let Some((centre, room)) = seed::seed_place(pb, &their_holes, want) else {
-                continue;
-            };
-            let floor = 4.0 * s.tolerances.snap.max(t.tolerances.snap);
-            let radius = (0.15 * (hole.area / std::f64::consts::PI).sqrt() * scale)
-                .min(room)
-                .max(floor);
-            let seed = seed::seed_circle(centre, radius, hole.points.len().clamp(12, 64));
-            let name = format!("auto-{k}");
-            k += 1;
-            let real = feature(&name, hole, step);
-            let spot = ControlCurve {
-                points: seed,
-                ..real.clone()
-            };
-            if forward {
-                s.controls.features.push(real);
-                t.controls.features.push(spot);
-                report.features.push((name, h, usize::MAX));
-            } else {
-                s.controls.features.push(spot);
-                t.controls.features.push(real);
-                report.features.push((name, usize::MAX, h));
-            }
-        }
-    }
-    // Drop features that break the layout rules (crossing, outside, self-crossing).
-    loop {
-        let err = crate::drawing::check_layout(&s.controls, &s.file)
-            .and_then(|_| crate::drawing::check_layout(&t.controls, &t.file));
-        match err {
-            Ok(()) => break,
-            Err(e) => {
-                let Some(name) = named_feature(&e, &s) else {
-                    return Err(e);
-                };
-                drop_feature(&mut s, &mut t, &mut report, (&cs, &ct), &name, &e);
-            }
-        }
-    }
-    // Map; a failure names curves: drop the smallest feature it names (or the smallest of all)
-    // and try again.
-    loop {
-        // The disc interpolation must be able to run on the result too (no coincident
-        // neighbouring vertices): checked here, so that a feature it cannot take is dropped.
-        // It must also move without folding: frames at eighths of the morph are checked, and
-        // a feature whose alignment makes the interpolation fold is dropped like one the
-        // mapping cannot keep.
-        let built = build(&s, &t, opts).and_then(|c| {
-            let m = &c.meshes;
-            let interp = crate::rigid::Interpolator::new(
-                crate::rigid::Method::Disc,
-                &m.source,
-                &m.target,
-                &m.triangles,
-            )?;
-            let ts: Vec<f64> = (1..8).map(|i| i as f64 / 8.0).collect();
-            for (t, f) in ts.iter().zip(interp.frames(&ts)) {
-                let folded = crate::mesh::count_inverted(&m.triangles, &f);
-                if folded > 0 {
-                    return Err(Error::input(
-                        "<auto>",
-                        format!("the rigid interpolation folds {folded} triangles at t = {t}"),
-                    ));
-                }
-            }
-            Ok(c)
-        });
-        match built {
-            Ok(mut c) => {
-                c.area_region = covered_region(&c.meshes, &report, (&cs, &ct));
-                report.morphing = geometric::morphing_paths(
-                    source_scene,
-                    target_scene,
-                    &cs,
-                    &ct,
-                    &report.features,
-                    &c.meshes,
-                );
-                return Ok((c, report, s, t));
-            }
-            Err(e) => {
-                if s.controls.features.is_empty() {
-                    return Err(e);
-                }
-                let name = named_feature(&e, &s).unwrap_or_else(|| smallest(&s));
-                drop_feature(&mut s, &mut t, &mut report, (&cs, &ct), &name, &e);
-            }
-        }
-    }
-}
-
-/// The triangles inside any closed outline or stroke feature (holes ignored) in the source mesh: the
-/// region the matched artwork covers, whose area the disc method keeps
-/// ([`Compatible::area_region`]). Holes are left in because a hole closing or opening changes
-/// the artwork's area without any part of it growing: a ring becoming a disc keeps its outer
-/// circle. `None` without closed outline features.
-fn covered_region(
-    m: &crate::mesh::CompatibleMeshes,
-    report: &AutoReport,
-    (cs, ct): (&[Contour], &[Contour]),
-) -> Option<Vec<[u32; 3]>> {
-    let outline = |name: &str| {
-        report.features.iter().any(|f| {
-            format!("feature-{}", f.0) == name && {
-                let c = if f.1 != usize::MAX {
-                    cs.get(f.1)
-                } else {
-                    ct.get(f.2)
-                };
-                c.is_some_and(|c| c.kind != contours::ContourKind::Hole)
-            }
-        })
-    };
-    let rings: Vec<Vec<Point>> = m
-        .curves
+    let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
+    let pairs = matching::match_shapes(&cs, &ct, diagonal);
+    let mut plans: Vec<PartPlan> = pairs
         .iter()
-        .filter(|c| c.closed && c.kind == CurveKind::Feature && outline(&c.name))
-        .map(|c| c.vertices.iter().map(|&v| m.source[v as usize]).collect())
+        .filter(|&&(a, _)| cs[a].kind != ContourKind::Hole)
+        .map(|&(a, b)| PartPlan {
+            source: a,
+            target: b,
+            holes: pairs
+                .iter()
+                .filter(|&&(h, g)| cs[h].parent == Some(a) && ct[g].parent == Some(b))
+                .copied()
+                .collect(),
+        })
         .collect();
-    let inside: Vec<[u32; 3]> = m
+    // Larger shapes first: they are the hosts of shapes without a partner and lead the report.
+    plans.sort_by(|x, y| {
+        cs[y.source]
+            .area
+            .max(cs[y.source].length * 1e-9)
+            .total_cmp(&cs[x.source].area.max(cs[x.source].length * 1e-9))
+            .then(x.source.cmp(&y.source))
+    });
+    let step = source.tolerances.max_edge.min(target.tolerances.max_edge) * 0.5;
+    let inputs = PartInputs {
+        source,
+        target,
+        opts,
+        step,
+    };
+    let built: Vec<Result<PartMesh>> = plans
+        .par_iter()
+        .map(|plan| build_part(plan, &cs, &ct, &inputs))
+        .collect();
+    // A pair whose outlines cannot even be corresponded (degenerate) is not a pair: its shapes
+    // grow and shrink instead.
+    let mut parts = Vec::with_capacity(built.len());
+    let mut kept = Vec::with_capacity(built.len());
+    for (plan, b) in plans.into_iter().zip(built) {
+        match b {
+            Ok(m) => {
+                parts.push(m);
+                kept.push(plan);
+            }
+            Err(e) => log::debug!("automatic mode: pair {plan:?} left unpaired: {e}"),
+        }
+    }
+    let plans = kept;
+    let frame = still_frame(source_scene, target_scene);
+    let (meshes, curve_pairs, placed) = union::union(&parts, frame);
+    let lone = lone_shapes(&cs, &ct, &plans, &parts, diagonal);
+    let area_region: Vec<[u32; 3]> = meshes
         .triangles
         .iter()
-        .filter(|t| {
-            let c = t.iter().map(|&v| m.source[v as usize]).sum::<Point>() / 3.0;
-            rings
-                .iter()
-                .any(|r| crate::geometry::point_in_polygon(c, r))
-        })
-        .copied()
+        .zip(&meshes.parts.as_ref().map(|p| p.of_triangle.clone()).unwrap_or_default())
+        .filter(|(_, &k)| k as usize != parts.len())
+        .map(|(t, _)| *t)
         .collect();
-    (!inside.is_empty()).then_some(inside)
+    let stats = crate::mapping::MappingStats {
+        vertices: meshes.source.len(),
+        triangles: meshes.triangles.len(),
+        ..Default::default()
+    };
+    let matched = Matched {
+        plans,
+        parts,
+        vertex_offset: placed.vertex_offset,
+        curve_offset: placed.curve_offset,
+        lone,
+    };
+    let morphing =
+        geometric::morphing_paths(source_scene, target_scene, &cs, &ct, &matched, &meshes);
+    let name_s = |c: usize| shape_name(source_scene, &cs, c);
+    let name_t = |c: usize| shape_name(target_scene, &ct, c);
+    let report = AutoReport {
+        contours: (cs.len(), ct.len()),
+        shapes: matched
+            .plans
+            .iter()
+            .zip(&matched.parts)
+            .map(|(p, m)| ShapeReport {
+                source: name_s(p.source),
+                target: name_t(p.target),
+                rung: m.rung,
+            })
+            .collect(),
+        lone: matched
+            .lone
+            .iter()
+            .map(|l| LoneReport {
+                shape: if l.source {
+                    name_s(l.contour)
+                } else {
+                    name_t(l.contour)
+                },
+                shrinks: l.source,
+                host: l.host.map(|(k, _)| {
+                    let p = &matched.plans[k];
+                    if l.source {
+                        name_s(p.source)
+                    } else {
+                        name_t(p.target)
+                    }
+                }),
+            })
+            .collect(),
+        morphing,
+    };
+    let c = Compatible {
+        meshes,
+        pairs: curve_pairs,
+        stats,
+        tolerances: common_tolerances(source, target, opts.density),
+        area_region: Some(area_region),
+    };
+    Ok((c, report, source.clone(), target.clone()))
 }
 
-fn feature(name: &str, c: &Contour, step: f64) -> ControlCurve {
-    ControlCurve {
-        id: format!("feature-{name}"),
-        name: name.to_string(),
-        kind: CurveKind::Feature,
-        closed: c.closed,
-        points: densify(&c.points, c.closed, step),
-    }
+/// The still frame: both view boxes' union, padded.
+fn still_frame(a: &Scene, b: &Scene) -> (Point, Point) {
+    let lo = a.view_box.0.min(b.view_box.0);
+    let hi = a.view_box.1.max(b.view_box.1);
+    let pad = PADDING * (hi - lo).max_element().max(1e-9);
+    (lo - Point::splat(pad), hi + Point::splat(pad))
 }
 
-/// `points` with every edge longer than `step` split evenly.
-fn densify(points: &[Point], closed: bool, step: f64) -> Vec<Point> {
-    let n = points.len();
-    let edges = if closed { n } else { n.saturating_sub(1) };
-    let mut out = Vec::with_capacity(n);
-    for i in 0..edges {
-        let (a, b) = (points[i], points[(i + 1) % n]);
-        let k = if step > 0.0 {
-            ((a.distance(b) / step).ceil() as usize).clamp(1, 10_000)
-        } else {
-            1
+/// The shapes (outlines and strokes) that no part pairs, each with the paired shape it goes
+/// into or comes out of: the part whose outline on its side is nearest, within
+/// [`HOST_REACH`] of the diagonal, and there the filled point nearest the lone shape's centre.
+fn lone_shapes(
+    cs: &[Contour],
+    ct: &[Contour],
+    plans: &[PartPlan],
+    parts: &[PartMesh],
+    diagonal: f64,
+) -> Vec<Lone> {
+    let mut out = Vec::new();
+    for (contours, source) in [(cs, true), (ct, false)] {
+        let paired = |c: usize| {
+            plans
+                .iter()
+                .any(|p| if source { p.source == c } else { p.target == c })
         };
-        for j in 0..k {
-            out.push(a + (b - a) * (j as f64 / k as f64));
-        }
-    }
-    if !closed {
-        if let Some(&last) = points.last() {
-            out.push(last);
+        for (c, contour) in contours.iter().enumerate() {
+            if contour.kind == ContourKind::Hole || paired(c) {
+                continue;
+            }
+            let holes: Vec<usize> = (0..contours.len())
+                .filter(|&h| contours[h].parent == Some(c))
+                .collect();
+            let mut best: Option<(f64, usize)> = None;
+            for (k, p) in plans.iter().enumerate() {
+                let _ = &parts[k];
+                let host = &contours[if source { p.source } else { p.target }];
+                // Strokes go into strokes, filled shapes into filled shapes.
+                if (host.kind == ContourKind::Stroke) != (contour.kind == ContourKind::Stroke) {
+                    continue;
+                }
+                let d = gap(contour, host);
+                if d <= HOST_REACH * diagonal && best.is_none_or(|(bd, _)| d < bd) {
+                    best = Some((d, k));
+                }
+            }
+            let host = best.and_then(|(_, k)| {
+                let p = &plans[k];
+                let outline = &contours[if source { p.source } else { p.target }];
+                let their_holes: Vec<&Contour> = contours
+                    .iter()
+                    .filter(|h| h.parent == Some(if source { p.source } else { p.target }))
+                    .collect();
+                if outline.kind == ContourKind::Stroke {
+                    return Some((k, nearest_on(outline, contour.centroid)));
+                }
+                seed::seed_place(outline, &their_holes, contour.centroid).map(|(c, _)| (k, c))
+            });
+            out.push(Lone {
+                contour: c,
+                holes,
+                source,
+                host,
+            });
         }
     }
     out
 }
 
-/// Pads the viewBox boundary of an unmarked drawing (a rectangle) about its centre.
-fn pad_boundary(d: &mut Drawing) {
-    let pts = &mut d.controls.boundary.points;
-    let Some((lo, hi)) = crate::geometry::bounding_box(pts.iter().copied()) else {
-        return;
-    };
-    let c = (lo + hi) * 0.5;
-    let pad = PADDING * (hi - lo).max_element();
-    for p in pts.iter_mut() {
-        let d = *p - c;
-        *p = c + Point::new(d.x + pad * d.x.signum(), d.y + pad * d.y.signum());
+/// The point of `c`'s polyline nearest to `p`.
+fn nearest_on(c: &Contour, p: Point) -> Point {
+    let n = c.points.len();
+    let edges = if c.closed { n } else { n.saturating_sub(1) };
+    let mut best = (f64::INFINITY, c.points[0]);
+    for i in 0..edges {
+        let (a, b) = (c.points[i], c.points[(i + 1) % n]);
+        let (d, u) = crate::geometry::point_segment_distance(p, a, b);
+        if d < best.0 {
+            best = (d, a + (b - a) * u);
+        }
     }
+    best.1
 }
 
-/// The feature of `d` an error names (longest matching name, so `auto-12` beats `auto-1`).
-/// The feature an error names that is cheapest to lose: of the features whose ids the message
-/// mentions (two for a crossing), the one with the shortest outline, so that of a small part
-/// touching a large one the large one keeps its crisp morph. Ties go to the one listed last.
-fn named_feature(e: &Error, d: &Drawing) -> Option<String> {
-    let text = e.to_string();
-    d.controls
-        .features
+/// The smallest distance between the points of two contours (0 when one's first point is
+/// inside the other's outline).
+fn gap(a: &Contour, b: &Contour) -> f64 {
+    if b.closed && crate::geometry::point_in_polygon(a.points[0], &b.points) {
+        return 0.0;
+    }
+    let n = b.points.len();
+    let edges = if b.closed { n } else { n.saturating_sub(1) };
+    a.points
         .iter()
-        .filter(|f| {
-            text.match_indices(&f.id).any(|(i, _)| {
-                !text[i + f.id.len()..]
-                    .chars()
-                    .next()
-                    .is_some_and(|c| c.is_ascii_digit())
-            })
+        .map(|&p| {
+            (0..edges)
+                .map(|i| crate::geometry::point_segment_distance(p, b.points[i], b.points[(i + 1) % n]).0)
+                .fold(f64::INFINITY, f64::min)
         })
-        .rev()
-        .min_by(|a, b| outline_length(a).total_cmp(&outline_length(b)))
-        .map(|f| f.name.clone())
+        .fold(f64::INFINITY, f64::min)
 }
 
-/// Length of a control curve's polyline (closing edge left out).
-fn outline_length(c: &ControlCurve) -> f64 {
-    c.points.windows(2).map(|w| w[0].distance(w[1])).sum()
-}
-
-/// The name of the feature with the shortest outline.
-fn smallest(d: &Drawing) -> String {
-    d.controls
-        .features
-        .iter()
-        .min_by(|a, b| outline_length(a).total_cmp(&outline_length(b)))
-        .map(|f| f.name.clone())
-        .unwrap_or_default()
-}
-
-fn drop_feature(
-    s: &mut Drawing,
-    t: &mut Drawing,
-    report: &mut AutoReport,
-    (cs, ct): (&[Contour], &[Contour]),
-    name: &str,
-    why: &Error,
-) {
-    let pair = report.features.iter().find(|f| f.0 == name).cloned();
-    s.controls.features.retain(|f| f.name != name);
-    t.controls.features.retain(|f| f.name != name);
-    report.features.retain(|f| f.0 != name);
-    let reason = match why {
-        Error::Input(i) => i.problem.clone(),
-        other => other.to_string(),
+/// A shape named as a user would name it: its element's id (with where it is when the element
+/// has several shapes), or "path N at (x, y)" (N counting the drawing's paths from 1).
+pub(crate) fn shape_name(scene: &Scene, contours: &[Contour], c: usize) -> String {
+    let contour = &contours[c];
+    let items = scene.items();
+    let id = match items.get(contour.path) {
+        Some(Item::Path(p)) => p.id.clone(),
+        _ => String::new(),
     };
-    report.dropped.push((name.to_string(), reason));
-    // A hole closing to a seed, or opening from one, only means something inside its outline's
-    // morph: with the outline's feature gone, its seeds go too.
-    let Some((_, a, b)) = pair else { return };
-    let orphans: Vec<String> = report
-        .features
+    let at = format!("({:.0}, {:.0})", contour.centroid.x, contour.centroid.y);
+    let siblings = contours
         .iter()
-        .filter(|f| {
-            (f.2 == usize::MAX && cs.get(f.1).and_then(|c| c.parent) == Some(a) && a != usize::MAX)
-                || (f.1 == usize::MAX
-                    && ct.get(f.2).and_then(|c| c.parent) == Some(b)
-                    && b != usize::MAX)
-        })
-        .map(|f| f.0.clone())
-        .collect();
-    for orphan in orphans {
-        let why = Error::input("<auto>", format!("its outline feature-{name} was dropped"));
-        drop_feature(s, t, report, (cs, ct), &orphan, &why);
+        .filter(|o| o.path == contour.path && o.kind != ContourKind::Hole)
+        .count();
+    let what = if contour.kind == ContourKind::Stroke {
+        "stroke"
+    } else {
+        "shape"
+    };
+    if id.is_empty() {
+        let n = items[..contour.path.min(items.len())]
+            .iter()
+            .filter(|i| matches!(i, Item::Path(_)))
+            .count()
+            + 1;
+        if siblings > 1 {
+            format!("path {n}'s {what} at {at}")
+        } else {
+            format!("path {n} at {at}")
+        }
+    } else if siblings > 1 {
+        format!("'{}' {what} at {at}", crate::error::printable(&id))
+    } else {
+        format!("'{}'", crate::error::printable(&id))
     }
 }

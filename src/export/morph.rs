@@ -147,14 +147,27 @@ impl Morph {
             return Ok(m);
         }
         let mut stack = Vec::new();
-        let bounds = |k: usize, item: fn(&MorphingPath) -> usize| {
-            let lo = k.checked_sub(1).map(|j| item(&paths[j]));
-            let hi = paths.get(k).map(item);
-            move |i: usize| lo.is_none_or(|lo| i > lo) && hi.is_none_or(|hi| i < hi)
+        // Items some morphing path draws besides its own (shapes riding in another path).
+        let covered_source: Vec<usize> = paths.iter().flat_map(|p| p.covers.0.clone()).collect();
+        let covered_target: Vec<usize> = paths.iter().flat_map(|p| p.covers.1.clone()).collect();
+        // Each rest item is painted once, right after the last path (in stack order) whose
+        // item on its side comes before it; items that morph, or ride in a morphing path, are
+        // not rest. With the paths in both drawings' order this is "the items strictly between
+        // two consecutive paths".
+        let bounds = |k: usize, item: fn(&MorphingPath) -> Option<usize>, covered: &[usize]| {
+            let mine: Vec<Option<usize>> = paths.iter().map(item).collect();
+            let covered = covered.to_vec();
+            move |i: usize| {
+                let slot = mine
+                    .iter()
+                    .rposition(|x| x.is_some_and(|x| x < i))
+                    .map_or(0, |p| p + 1);
+                slot == k && !mine.contains(&Some(i)) && !covered.contains(&i)
+            }
         };
         for k in 0..=paths.len() {
-            let s = source.retain_items(bounds(k, |p| p.source_item));
-            let g = target.retain_items(bounds(k, |p| p.target_item));
+            let s = source.retain_items(bounds(k, |p| p.source_item, &covered_source));
+            let g = target.retain_items(bounds(k, |p| p.target_item, &covered_target));
             if !s.root.children.is_empty() || !g.root.children.is_empty() {
                 let pair = ArtworkPair::new(&s, &g, &m.meshes, frame.flatten_tolerance())?;
                 stack.push(Part::Rest(Box::new(pair)));

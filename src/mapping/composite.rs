@@ -199,6 +199,7 @@ pub fn composite_map(
         source,
         target,
         curves: tri.curves.clone(),
+        parts: None,
     };
     Ok((meshes, stats))
 }

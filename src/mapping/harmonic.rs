@@ -177,6 +177,47 @@ impl Harmonic {
         self.finish(&llt, out)
     }
 
+    /// [`Harmonic::solve`] with every weight clamped to a small positive floor first: a
+    /// convex-combination map, which is one-to-one onto a convex boundary by Tutte's theorem
+    /// (Floater's form for positive weights), and as close to harmonic as the floor allows.
+    pub fn solve_convex(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+        let n = self.free_index.len();
+        if metric.len() != n || out.len() != n {
+            return Err(Error::internal("harmonic map: wrong vertex count"));
+        }
+        let Some(symbolic) = self.symbolic.clone() else {
+            return Ok(());
+        };
+        self.weights.fill(0.0);
+        for (t, opp) in self.triangles.iter().zip(&self.opposite) {
+            let p = t.map(|v| metric[v as usize]);
+            let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
+            for k in 0..3 {
+                let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+                if opp[k] != NONE {
+                    self.weights[opp[k] as usize] += 0.5 * a.dot(b) / twice_area;
+                }
+            }
+        }
+        let mean = self
+            .weights
+            .iter()
+            .filter(|w| w.is_finite())
+            .map(|w| w.abs())
+            .sum::<f64>()
+            / self.weights.len().max(1) as f64;
+        let floor = 1e-2 * mean.max(f64::MIN_POSITIVE);
+        for w in &mut self.weights {
+            if !w.is_finite() {
+                *w = floor;
+            }
+        }
+        let llt = self
+            .factor(&symbolic, Some(floor))
+            .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?;
+        self.finish(&llt, out)
+    }
+
     /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored
     /// back so that the right-hand side uses the same weights) and factors it numerically.
     fn factor(

@@ -225,6 +225,23 @@ pub(crate) struct DiscRigid {
     rotation: Vec<f64>,
     /// The area rule (`area.rs`), for frames of a triangle mesh without extra rows.
     area: Option<AreaRule>,
+    /// Parts that move together ([`DiscRigid::group_parts`]).
+    group: Option<PartGroup>,
+}
+
+/// Connected parts that move as one figure (automatic mode's shapes of one icon): their
+/// centroids follow the disc-based rigid interpolation of the *barycenter mesh* — one point
+/// per part, every part linked to every other, as the paper's shape model links its curves
+/// (§5, Fig. 9) — instead of straight lines, so parts that swing round together keep their
+/// layout; and each part's rotations are taken on the branch (a multiple of 2π) nearest the
+/// barycenter mesh's own turn, so that parts turning together turn the same way.
+#[derive(Debug)]
+struct PartGroup {
+    /// The member components, in increasing order.
+    members: Vec<u32>,
+    /// The barycenter mesh's interpolation (`None` with fewer than two distinct centroids:
+    /// the centroids then keep their straight lines).
+    barycenters: Option<Box<DiscRigid>>,
 }
 
 /// Per-thread scratch for [`DiscRigid::at`] and the triangle baseline.
@@ -238,6 +255,8 @@ pub(crate) struct FrameScratch {
     pub(crate) cos: Vec<f64>,
     /// Per-component areas for the area rule.
     areas: Vec<f64>,
+    /// The barycenter mesh's scratch and frame, for grouped parts.
+    group: Option<Box<(FrameScratch, Vec<Point>)>>,
 }
 
 impl FrameScratch {
@@ -250,6 +269,7 @@ impl FrameScratch {
             sin: vec![0.0; terms],
             cos: vec![0.0; terms],
             areas: vec![0.0; components],
+            group: None,
         }
     }
 
@@ -366,7 +386,64 @@ impl DiscRigid {
             system,
             rotation,
             area: None,
+            group: None,
         })
+    }
+
+    /// Makes the connected parts whose vertices are flagged in `together` (a flag per point;
+    /// a part belongs when its first point is flagged) move as one figure ([`PartGroup`]):
+    /// their centroids follow the barycenter mesh's rigid interpolation and their rotations
+    /// the barycenter mesh's branch. Frames t = 0 and 1 stay exact: the barycenter mesh
+    /// reproduces its ends, and a 2π shift does not change an end.
+    pub(crate) fn group_parts(&mut self, together: &[bool]) {
+        let comp = self.system.components();
+        let count = self.centroid_source.len();
+        let mut first = vec![None; count];
+        for (v, &c) in comp.iter().enumerate() {
+            first[c as usize].get_or_insert(v);
+        }
+        let members: Vec<u32> = (0..count as u32)
+            .filter(|&c| first[c as usize].is_some_and(|v| together.get(v) == Some(&true)))
+            .collect();
+        if members.len() < 2 {
+            return;
+        }
+        let pick = |cs: &[Point]| -> Vec<Point> { members.iter().map(|&c| cs[c as usize]).collect() };
+        let (a, b) = (pick(&self.centroid_source), pick(&self.centroid_target));
+        let k = members.len() as u32;
+        let discs: Vec<Vec<u32>> = (0..k).map(|i| (0..k).filter(|&j| j != i).collect()).collect();
+        // Coincident centroids (concentric rings) give no layout to keep.
+        let barycenters = DiscRigid::new(&a, &b, &discs).ok().map(Box::new);
+        if let Some(bm) = &barycenters {
+            let turn = bm.alpha.iter().sum::<f64>() / bm.alpha.len().max(1) as f64;
+            let mut sum = vec![(0.0f64, 0usize); count];
+            for (e, &al) in self.terms.iter().zip(&self.alpha) {
+                let c = comp[e.vi as usize] as usize;
+                sum[c].0 += al;
+                sum[c].1 += 1;
+            }
+            let shift: Vec<f64> = sum
+                .iter()
+                .enumerate()
+                .map(|(c, &(s, n))| {
+                    if n == 0 || !members.contains(&(c as u32)) {
+                        return 0.0;
+                    }
+                    let tau = std::f64::consts::TAU;
+                    ((turn - s / n as f64) / tau).round() * tau
+                })
+                .collect();
+            for (e, al) in self.terms.iter().zip(self.alpha.iter_mut()) {
+                *al += shift[comp[e.vi as usize] as usize];
+            }
+            for (v, r) in self.rotation.iter_mut().enumerate() {
+                *r += shift[comp[v] as usize];
+            }
+        }
+        self.group = Some(PartGroup {
+            members,
+            barycenters,
+        });
     }
 
     /// Number of points.
@@ -380,7 +457,11 @@ impl DiscRigid {
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
+        let mut s = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
+        if let Some(bm) = self.group.as_ref().and_then(|g| g.barycenters.as_ref()) {
+            s.group = Some(Box::new((bm.scratch(), vec![Point::ZERO; bm.vertex_count()])));
+        }
+        s
     }
 
     /// Points at `t` into `out` (eq. 1), without allocating.
@@ -443,6 +524,15 @@ impl DiscRigid {
             &self.centroid_target,
             t,
         );
+        if let (Some(g), Some(gs)) = (&self.group, ws.group.as_mut()) {
+            if let Some(bm) = &g.barycenters {
+                let (scratch, at) = &mut **gs;
+                bm.at(t, at, scratch);
+                for (&c, &p) in g.members.iter().zip(at.iter()) {
+                    ws.centroids[c as usize] = p;
+                }
+            }
+        }
         self.system.solve(&mut ws.solve, &ws.centroids, out);
         if let Some(rule) = &self.area {
             rule.apply(

@@ -30,6 +30,32 @@ pub(crate) use disc::{DiscRigid, ExtraRow, FrameScratch};
 use rayon::prelude::*;
 use triangle::TriangleRigid;
 
+/// A polyline of points whose consecutive points are each other's disc neighbours: a curve
+/// that morphs without a mesh (a stroke's centre line, an outline with no interior mesh).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Chain {
+    /// Point indices along the curve.
+    pub vertices: Vec<u32>,
+    /// Whether the last point links back to the first.
+    pub closed: bool,
+}
+
+/// What the disc method is set up on ([`Interpolator::disc`]). Default: no triangles, no
+/// chains, the area rule on every triangle, parts moving independently.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DiscSetup<'a> {
+    /// Triangles (counter-clockwise in the source) whose one-rings are discs.
+    pub triangles: &'a [[u32; 3]],
+    /// Curves without a mesh: consecutive points are disc neighbours.
+    pub chains: &'a [Chain],
+    /// The triangles whose area the area rule keeps per part. Default: all of them.
+    pub area_region: Option<&'a [[u32; 3]]>,
+    /// A flag per point: the connected parts whose points are flagged move as one figure
+    /// (centroids on the barycenter mesh's rigid path, rotations on its branch; automatic
+    /// mode's shapes of one icon). Default: every part on its own straight centroid line.
+    pub together: Option<&'a [bool]>,
+}
+
 /// Which interpolation to use (CLI: `--method disc|triangle|linear`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
@@ -118,13 +144,47 @@ impl Interpolator {
         triangles: &[[u32; 3]],
         region: &[[u32; 3]],
     ) -> Result<Self> {
+        Self::disc(
+            source,
+            target,
+            &DiscSetup {
+                triangles,
+                area_region: Some(region),
+                ..DiscSetup::default()
+            },
+        )
+    }
+
+    /// The disc method (§4.1) set up as `setup` says: one-ring discs of its triangles, chain
+    /// discs along its curves without a mesh, the area rule on its region, and its parts moving
+    /// together.
+    pub fn disc(source: &[Point], target: &[Point], setup: &DiscSetup<'_>) -> Result<Self> {
         disc::validate_points(source, target)?;
         let n = source.len();
-        check_triangles(triangles, n)?;
+        check_triangles(setup.triangles, n)?;
+        let region = setup.area_region.unwrap_or(setup.triangles);
         check_triangles(region, n)?;
-        let rings = crate::mesh::one_rings(triangles, n);
+        let mut rings = crate::mesh::one_rings(setup.triangles, n);
+        for chain in setup.chains {
+            let k = chain.vertices.len();
+            let links = if chain.closed { k } else { k.saturating_sub(1) };
+            for i in 0..links {
+                let (a, b) = (chain.vertices[i], chain.vertices[(i + 1) % k]);
+                if a as usize >= n || b as usize >= n || a == b {
+                    return Err(Error::internal(format!(
+                        "chain link {a}–{b} is not a pair of distinct points of {n}"
+                    )));
+                }
+                rings[a as usize].push(b);
+                rings[b as usize].push(a);
+            }
+        }
+        let mut d = DiscRigid::with_area_rule(source, target, &rings, region)?;
+        if let Some(together) = setup.together {
+            d.group_parts(together);
+        }
         Ok(Interpolator {
-            kind: Kind::Disc(DiscRigid::with_area_rule(source, target, &rings, region)?),
+            kind: Kind::Disc(d),
             n,
         })
     }

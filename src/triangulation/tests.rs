@@ -237,6 +237,7 @@ proptest::proptest! {
                 source: tri.points.clone(),
                 target: tri.points.clone(),
                 curves: tri.curves.clone(),
+                parts: None,
             },
             None,
             0.0,

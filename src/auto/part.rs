@@ -1,0 +1,395 @@
+//! One matched pair of shapes as its own CR-Morph problem (issue #7, item 1).
+//!
+//! A shape is an outline with its holes. Its outline is the boundary of the problem and its
+//! matched holes are feature curves inside it, so the mesh covers the shape and nothing else —
+//! the paper's setting (§3), where the boundary is the shape's own outline. Each pair climbs a
+//! ladder until a rung gives compatible meshes that the disc-based rigid interpolation moves
+//! without folding:
+//!
+//! 1. the paper's compatible triangulation (CDT of one side, composite harmonic mapping through
+//!    the barycenter-based shape model, §5) with every matched hole aligned; then from the
+//!    other side (Fig. 12); then with holes given up one at a time, the smallest or the one the
+//!    failure names first;
+//! 2. the triangulation that always exists: both outlines triangulated, embedded in a disc and
+//!    overlaid ([`crate::mapping::overlay`]), outline only;
+//! 3. last, the outline alone, corresponded and moved as a closed chain of discs with no
+//!    interior mesh (intrinsic-like: edge lengths and turning angles interpolate).
+//!
+//! Holes that are not aligned as features still morph inside the shape (see
+//! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
+
+use crate::compatible::{build, Compatible, MorphOptions};
+use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
+use crate::drawing::{Anchor, ControlCurve, Drawing};
+use crate::error::{Error, Result};
+use crate::geometry::Point;
+use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve};
+use crate::tolerance::Tolerances;
+
+use super::contours::Contour;
+
+/// Which rung of the ladder (module docs) gave a shape pair its compatible meshes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rung {
+    /// The paper's compatible triangulation (§5) with `features` holes aligned, triangulating
+    /// the target and mapping it onto the source when `from_target` (Fig. 12).
+    Mapped {
+        /// The target side was triangulated.
+        from_target: bool,
+        /// Matched holes aligned as feature curves.
+        features: usize,
+    },
+    /// Both outlines' triangulations embedded in a common disc and overlaid: compatible by
+    /// construction ([`crate::mapping::overlay`]).
+    Overlay,
+    /// No interior mesh: the outline moves as a chain of discs.
+    Outline,
+    /// A stroke: its centre line moves as a chain of discs.
+    Stroke,
+}
+
+impl std::fmt::Display for Rung {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Rung::Mapped {
+                from_target,
+                features,
+            } => {
+                f.write_str("composite harmonic mapping")?;
+                if *from_target {
+                    f.write_str(" from the target")?;
+                }
+                match features {
+                    0 => Ok(()),
+                    1 => f.write_str(", 1 hole aligned"),
+                    n => write!(f, ", {n} holes aligned"),
+                }
+            }
+            Rung::Overlay => f.write_str("overlaid disc embeddings"),
+            Rung::Outline => f.write_str("outline only, no interior mesh"),
+            Rung::Stroke => f.write_str("centre line"),
+        }
+    }
+}
+
+/// A matched shape pair: outline contours and matched holes (indices into each drawing's
+/// contours).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PartPlan {
+    /// The source outline.
+    pub(crate) source: usize,
+    /// The target outline.
+    pub(crate) target: usize,
+    /// Matched holes `(source hole, target hole)`.
+    pub(crate) holes: Vec<(usize, usize)>,
+}
+
+/// A shape pair's compatible meshes (its own vertex numbering) and how they were made.
+#[derive(Debug, Clone)]
+pub(crate) struct PartMesh {
+    /// The meshes: curve 0 is the outline; then the aligned holes. No triangles on the
+    /// [`Rung::Outline`] rung.
+    pub(crate) meshes: CompatibleMeshes,
+    /// The curve pairs of `meshes.curves`.
+    pub(crate) pairs: Vec<CurvePair>,
+    /// The rung taken.
+    pub(crate) rung: Rung,
+    /// Matched holes aligned as features, with their curve index in `meshes.curves`.
+    pub(crate) features: Vec<((usize, usize), usize)>,
+}
+
+/// What a part's problem is built from: the two drawings (for file names and settings), the
+/// morph options, the anchors, and the tolerances of the part.
+pub(crate) struct PartInputs<'a> {
+    pub(crate) source: &'a Drawing,
+    pub(crate) target: &'a Drawing,
+    pub(crate) opts: &'a MorphOptions,
+    /// Extra vertex spacing along straight runs (see [`densify`]).
+    pub(crate) step: f64,
+}
+
+/// The tolerances of a part: relative to its own size, so that a small part gets a mesh as
+/// fine relative to itself as a large one, but not finer than a quarter of the drawing
+/// (tiny parts keep their flattened outline vertices and a coarse interior).
+fn part_tolerances(a: &Contour, b: &Contour, drawing_diagonal: f64, density: f64) -> Tolerances {
+    let size = |c: &Contour| {
+        crate::geometry::bounding_box(c.points.iter().copied()).map_or(0.0, |(lo, hi)| lo.distance(hi))
+    };
+    let d = size(a).max(size(b)).max(0.25 * drawing_diagonal);
+    Tolerances::new(d, density)
+}
+
+/// A contour as a control curve.
+fn curve(id: &str, kind: CurveKind, c: &Contour, step: f64) -> ControlCurve {
+    ControlCurve {
+        id: id.to_string(),
+        name: id.strip_prefix("feature-").unwrap_or(id).to_string(),
+        kind,
+        closed: c.closed,
+        points: densify(&c.points, c.closed, step),
+    }
+}
+
+/// `points` with every edge longer than `step` split evenly: straight runs get vertices along
+/// them, so that the correspondence may start a closed contour anywhere on them, not only at a
+/// corner (a circle → square pair would otherwise turn by the angle to the nearest corner).
+pub(crate) fn densify(points: &[Point], closed: bool, step: f64) -> Vec<Point> {
+    let n = points.len();
+    let edges = if closed { n } else { n.saturating_sub(1) };
+    let mut out = Vec::with_capacity(n);
+    for i in 0..edges {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        let k = if step > 0.0 {
+            ((a.distance(b) / step).ceil() as usize).clamp(1, 10_000)
+        } else {
+            1
+        };
+        for j in 0..k {
+            out.push(a + (b - a) * (j as f64 / k as f64));
+        }
+    }
+    if !closed {
+        if let Some(&last) = points.last() {
+            out.push(last);
+        }
+    }
+    out
+}
+
+/// The anchors of `d` that pin a curve of this part: within reach of the source outline or a
+/// hole (`curves`).
+fn anchors_near(anchors: &[Anchor], curves: &[&Contour], reach: f64) -> Vec<Anchor> {
+    anchors
+        .iter()
+        .filter(|a| {
+            curves.iter().any(|c| {
+                let n = c.points.len();
+                (0..n).any(|i| {
+                    crate::geometry::point_segment_distance(
+                        a.point,
+                        c.points[i],
+                        c.points[(i + 1) % n],
+                    )
+                    .0 <= reach
+                })
+            })
+        })
+        .cloned()
+        .collect()
+}
+
+/// Builds the compatible meshes of one matched shape pair, climbing the ladder of the module
+/// docs. Errors only when even the outline alone cannot be corresponded (a degenerate
+/// outline).
+pub(crate) fn build_part(
+    plan: &PartPlan,
+    cs: &[Contour],
+    ct: &[Contour],
+    inputs: &PartInputs<'_>,
+) -> Result<PartMesh> {
+    let (a, b) = (&cs[plan.source], &ct[plan.target]);
+    let diagonal = inputs
+        .source
+        .tolerances
+        .diagonal
+        .max(inputs.target.tolerances.diagonal);
+    let tol = part_tolerances(a, b, diagonal, inputs.opts.density);
+    let reach = inputs.opts.correspondence.anchor_reach * diagonal;
+    let drawing = |d: &Drawing, outline: &Contour, holes: Vec<(&str, &Contour)>, others: &[&Contour]| {
+        let mut d = d.clone();
+        d.tolerances = tol;
+        d.controls.boundary = curve("boundary", CurveKind::Boundary, outline, inputs.step);
+        d.controls.boundary_from_view_box = false;
+        d.controls.features = holes
+            .iter()
+            .map(|(id, h)| curve(id, CurveKind::Feature, h, inputs.step))
+            .collect();
+        d.controls.features.sort_by(|x, y| x.name.cmp(&y.name));
+        let mut near: Vec<&Contour> = vec![outline];
+        near.extend(others.iter().copied());
+        d.controls.anchors = anchors_near(&d.controls.anchors, &near, reach);
+        d.controls.skeleton.clear();
+        d
+    };
+    // Rung 1: the paper's mapping, holes given up one at a time (strokes have no inside).
+    let stroke = a.kind == super::contours::ContourKind::Stroke;
+    let mut holes: Vec<(usize, usize)> = plan.holes.clone();
+    while !stroke {
+        let names: Vec<String> = (0..holes.len()).map(|k| format!("feature-hole-{k}")).collect();
+        let hs: Vec<&Contour> = holes.iter().map(|&(h, _)| &cs[h]).collect();
+        let ht: Vec<&Contour> = holes.iter().map(|&(_, h)| &ct[h]).collect();
+        let s = drawing(
+            inputs.source,
+            a,
+            names.iter().map(String::as_str).zip(hs.iter().copied()).collect(),
+            &hs,
+        );
+        let t = drawing(
+            inputs.target,
+            b,
+            names.iter().map(String::as_str).zip(ht.iter().copied()).collect(),
+            &ht,
+        );
+        // Anchors must pin the same names on both sides.
+        let keep: Vec<String> = s
+            .controls
+            .anchors
+            .iter()
+            .filter(|x| t.controls.anchors.iter().any(|y| y.name == x.name))
+            .map(|x| x.name.clone())
+            .collect();
+        let (mut s, mut t) = (s, t);
+        s.controls.anchors.retain(|x| keep.contains(&x.name));
+        t.controls.anchors.retain(|x| keep.contains(&x.name));
+        let mut failure: Option<Error> = None;
+        for from_target in [false, true] {
+            let mut o = inputs.opts.clone();
+            o.from_target = from_target;
+            match build(&s, &t, &o).and_then(|c| moves_without_folding(&c).map(|_| c)) {
+                Ok(c) => {
+                    let features = holes
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(k, &h)| {
+                            let id = format!("feature-hole-{k}");
+                            c.meshes.curves.iter().position(|m| m.name == id).map(|i| (h, i))
+                        })
+                        .collect::<Vec<_>>();
+                    return Ok(PartMesh {
+                        rung: Rung::Mapped {
+                            from_target,
+                            features: features.len(),
+                        },
+                        features,
+                        pairs: c.pairs,
+                        meshes: c.meshes,
+                    });
+                }
+                Err(e) => {
+                    log::debug!("part {}→{}: {e}", plan.source, plan.target);
+                    failure.get_or_insert(e);
+                }
+            }
+        }
+        if holes.is_empty() {
+            break;
+        }
+        // Give up the hole the failure names, else the smallest.
+        let text = failure.map(|e| e.to_string()).unwrap_or_default();
+        let named = (0..holes.len()).rev().find(|k| {
+            let id = format!("feature-hole-{k}");
+            text.match_indices(&id).any(|(i, _)| {
+                !text[i + id.len()..]
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_digit())
+            })
+        });
+        let k = named.unwrap_or_else(|| {
+            (0..holes.len())
+                .min_by(|&x, &y| cs[holes[x].0].length.total_cmp(&cs[holes[y].0].length))
+                .unwrap_or(0)
+        });
+        holes.remove(k);
+    }
+    // Rungs 2 and 3 work on the outline alone.
+    let s = drawing(inputs.source, a, Vec::new(), &[]);
+    let t = drawing(inputs.target, b, Vec::new(), &[]);
+    let copts = CorrespondenceOptions {
+        density: 1.0,
+        ..inputs.opts.correspondence.clone()
+    };
+    let pins: Vec<(Point, Point)> = s
+        .controls
+        .anchors
+        .iter()
+        .filter_map(|x| {
+            t.controls
+                .anchors
+                .iter()
+                .find(|y| y.name == x.name)
+                .map(|y| (x.point, y.point))
+        })
+        .collect();
+    let outline = correspond(&s.controls.boundary, &t.controls.boundary, &pins, &tol, &copts)
+        .map_err(|e| e.in_file(format!("{} → {}", inputs.source.file, inputs.target.file)))?;
+    let overlaid = if stroke {
+        None
+    } else {
+        match crate::mapping::overlay::compatible_outlines(&outline, &tol) {
+            Ok(m) => Some(m),
+            Err(e) => {
+                log::debug!("overlay of {}→{}: {e}", plan.source, plan.target);
+                None
+            }
+        }
+    };
+    if let Some(m) = overlaid {
+        let c = Compatible {
+            meshes: m,
+            pairs: vec![outline.clone()],
+            stats: Default::default(),
+            tolerances: tol,
+            area_region: None,
+        };
+        let r = moves_without_folding(&c);
+        if let Err(e) = &r {
+            log::debug!(
+                "overlay of {}→{} ({} vertices): {e}",
+                plan.source,
+                plan.target,
+                c.meshes.source.len()
+            );
+        }
+        if r.is_ok() {
+            return Ok(PartMesh {
+                meshes: c.meshes,
+                pairs: c.pairs,
+                rung: Rung::Overlay,
+                features: Vec::new(),
+            });
+        }
+    }
+    let n = outline.source.len() as u32;
+    let meshes = CompatibleMeshes {
+        triangles: Vec::new(),
+        source: outline.source.clone(),
+        target: outline.target.clone(),
+        curves: vec![MeshCurve {
+            name: outline.id.clone(),
+            kind: CurveKind::Boundary,
+            closed: outline.closed,
+            vertices: (0..n).collect(),
+        }],
+        parts: None,
+    };
+    Ok(PartMesh {
+        meshes,
+        pairs: vec![outline],
+        rung: if stroke { Rung::Stroke } else { Rung::Outline },
+        features: Vec::new(),
+    })
+}
+
+/// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/8
+/// (k = 1…7): a mesh whose frames fold is no better than a failed mapping.
+fn moves_without_folding(c: &Compatible) -> Result<()> {
+    let m = &c.meshes;
+    let interp = crate::rigid::Interpolator::new(
+        crate::rigid::Method::Disc,
+        &m.source,
+        &m.target,
+        &m.triangles,
+    )?;
+    let ts: Vec<f64> = (1..8).map(|i| i as f64 / 8.0).collect();
+    for (t, f) in ts.iter().zip(interp.frames(&ts)) {
+        let folded = crate::mesh::count_inverted(&m.triangles, &f);
+        if folded > 0 {
+            return Err(Error::input(
+                "<auto>",
+                format!("the rigid interpolation folds {folded} triangles at t = {t}"),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,262 @@
+//! A compatible triangulation that always exists for two simple outlines with a matched vertex
+//! correspondence (issue #7, item 2): the rung under the composite harmonic mapping of §5.
+//!
+//! 1. Each outline is triangulated on its own (the refined constrained Delaunay triangulation
+//!    of [`crate::triangulation`]), with the outline's corresponded vertices as its boundary.
+//! 2. Both meshes are embedded in one disc: boundary vertex k goes to the same point of the
+//!    unit circle in both (at the mean of its two normalized arc lengths) and the interior
+//!    vertices where a convex-combination map puts them — the cotangent weights of the
+//!    Delaunay mesh, clamped to stay positive — which is one-to-one onto a convex boundary by
+//!    Tutte's theorem (Floater, 2003). Each mesh's embedding is thus a valid triangulation of
+//!    the same convex polygon.
+//! 3. The two embedded triangulations are overlaid (Aronov, Seidel and Souvaine, 1993;
+//!    Surazhsky and Gotsman, 2004): a constrained Delaunay triangulation of the disc with the
+//!    edges of both as constraints, every crossing of a source edge with a target edge a new
+//!    vertex. Each of its triangles lies inside one source triangle and one target triangle.
+//! 4. Every vertex is carried back to each outline through the triangle of that side's mesh it
+//!    lies in (barycentric coordinates). Inside one triangle the map from the disc to an
+//!    outline is affine, so every overlay triangle keeps its orientation in both: the meshes
+//!    are compatible by construction, with every boundary vertex on its twin. The composite of
+//!    the two embeddings is a smooth one-to-one map between the shapes, so the interpolation
+//!    has a sensible interior to move.
+//!
+//! Floating point can still leave a sliver inverted where edges cross at a tiny angle; those
+//! vertices are moved within their stars, and [`super::remesh`] then improves the mesh (splits,
+//! flips and smoothing that keep it valid in both meshes).
+
+use crate::artwork::PointLocator;
+use crate::correspondence::CurvePair;
+use crate::geometry::{orient2d, polygon_area, Point};
+use crate::mesh::{count_inverted, CompatibleMeshes, CurveKind, MeshCurve};
+use crate::tolerance::Tolerances;
+use crate::triangulation::{triangulate, Triangulation};
+use crate::{Error, Result};
+use spade::handles::FixedVertexHandle;
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
+
+/// Most vertices of the overlay, as a multiple of the two meshes' vertex counts: a guard
+/// against outlines whose embeddings cross each other everywhere.
+const VERTEX_BUDGET: usize = 12;
+
+/// Compatible triangulations of the two sides of the closed outline pair `outline` (module
+/// docs): vertices `0..n` are the outline's, in order. Errors when a side is not a simple
+/// polygon, or when rounding left a triangle the repair cannot straighten.
+pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<CompatibleMeshes> {
+    let (p, q) = (&outline.source, &outline.target);
+    let n = p.len();
+    if !outline.closed || n < 3 || q.len() != n {
+        return Err(Error::internal("overlay: not a closed outline pair"));
+    }
+    if polygon_area(p) <= 0.0 || polygon_area(q) <= 0.0 {
+        return Err(Error::input(
+            "<source> → <target>",
+            format!("{}: an outline is not counter-clockwise", outline.id),
+        ));
+    }
+    let pairs = [outline.clone()];
+    let a = triangulate(&pairs, tol, false)?;
+    let b = triangulate(&pairs, tol, true)?;
+    let circle = disc_points(p, q);
+    let da = embed(&a, &circle)?;
+    let db = embed(&b, &circle)?;
+    let (disc, owner_a, owner_b, triangles) = overlay(n, &a, &da, &b, &db)?;
+    let budget = VERTEX_BUDGET * (a.points.len() + b.points.len());
+    if disc.len() > budget {
+        return Err(Error::input(
+            "<source> → <target>",
+            format!(
+                "{}: the overlay would have {} vertices, more than {budget}",
+                outline.id,
+                disc.len()
+            ),
+        ));
+    }
+    let carry = |d: &[Point], mesh: &Triangulation, owner: &[Option<u32>]| -> Result<Vec<Point>> {
+        let locator = PointLocator::new(d, &mesh.triangles)?;
+        Ok(disc
+            .iter()
+            .zip(owner)
+            .map(|(&x, o)| match o {
+                Some(k) => mesh.points[*k as usize],
+                None => locator.locate(x).place(&mesh.triangles, &mesh.points),
+            })
+            .collect())
+    };
+    let source = carry(&da, &a, &owner_a)?;
+    let target = carry(&db, &b, &owner_b)?;
+    let mut m = CompatibleMeshes {
+        triangles,
+        source,
+        target,
+        curves: vec![MeshCurve {
+            name: outline.id.clone(),
+            kind: CurveKind::Boundary,
+            closed: true,
+            vertices: (0..n as u32).collect(),
+        }],
+        parts: None,
+    };
+    super::remesh::untangle(&mut m, n);
+    let folded = count_inverted(&m.triangles, &m.source) + count_inverted(&m.triangles, &m.target);
+    if folded > 0 {
+        return Err(Error::input(
+            "<source> → <target>",
+            format!(
+                "{}: {folded} triangles of the overlaid triangulation are degenerate",
+                outline.id
+            ),
+        ));
+    }
+    super::remesh::improve(&mut m, n, tol);
+    Ok(m)
+}
+
+/// The disc embedding of a triangulation whose first `circle.len()` vertices are its boundary:
+/// those on `circle`, the others by a convex-combination map (module docs).
+fn embed(mesh: &Triangulation, circle: &[Point]) -> Result<Vec<Point>> {
+    let n = circle.len();
+    let mut fixed = vec![false; mesh.points.len()];
+    fixed[..n].fill(true);
+    let mut h = super::harmonic::Harmonic::new(&mesh.triangles, mesh.points.len(), &fixed)?;
+    let mut out = mesh.points.clone();
+    out[..n].copy_from_slice(circle);
+    h.solve_convex(&mesh.points, &mut out)?;
+    Ok(out)
+}
+
+/// Boundary vertex k on the unit circle at the mean of its normalized arc lengths along the two
+/// outlines (counter-clockwise, like the outlines).
+fn disc_points(p: &[Point], q: &[Point]) -> Vec<Point> {
+    let arcs = |r: &[Point]| -> Vec<f64> {
+        let n = r.len();
+        let mut s = Vec::with_capacity(n);
+        let mut acc = 0.0;
+        for k in 0..n {
+            s.push(acc);
+            acc += r[k].distance(r[(k + 1) % n]);
+        }
+        s.iter().map(|x| x / acc.max(f64::MIN_POSITIVE)).collect()
+    };
+    let (a, b) = (arcs(p), arcs(q));
+    a.iter()
+        .zip(&b)
+        .map(|(x, y)| {
+            let th = std::f64::consts::TAU * 0.5 * (x + y);
+            Point::new(th.cos(), th.sin())
+        })
+        .collect()
+}
+
+/// Overlay vertices in the disc, which of them are vertices of the source mesh `a` (and of
+/// the target mesh `b`) with their index there, and the overlay's triangles
+/// (counter-clockwise).
+type Overlaid = (Vec<Point>, Vec<Option<u32>>, Vec<Option<u32>>, Vec<[u32; 3]>);
+
+/// The overlay of the two disc embeddings `da` of `a` and `db` of `b` (module docs); the first
+/// `n` vertices of both are the shared boundary.
+fn overlay(
+    n: usize,
+    a: &Triangulation,
+    da: &[Point],
+    b: &Triangulation,
+    db: &[Point],
+) -> Result<Overlaid> {
+    type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
+    let mut cdt = Cdt::new();
+    let insert = |cdt: &mut Cdt, p: Point| {
+        cdt.insert(Point2::new(p.x, p.y))
+            .map_err(|_| Error::internal("overlay: a disc position spade cannot take"))
+    };
+    let mut ha: Vec<FixedVertexHandle> = Vec::with_capacity(da.len());
+    for (k, &p) in da.iter().enumerate() {
+        let h = insert(&mut cdt, p)?;
+        if k < n && h.index() != k {
+            return Err(Error::internal("overlay: boundary vertices merged"));
+        }
+        ha.push(h);
+    }
+    let mut hb: Vec<FixedVertexHandle> = ha[..n].to_vec();
+    for &p in &db[n..] {
+        hb.push(insert(&mut cdt, p)?);
+    }
+    for (x, y) in crate::mesh::edges(&a.triangles) {
+        cdt.add_constraint(ha[x as usize], ha[y as usize]);
+    }
+    for (x, y) in crate::mesh::edges(&b.triangles) {
+        cdt.add_constraint_and_split(hb[x as usize], hb[y as usize], |p| p);
+    }
+    let count = cdt.num_vertices();
+    let mut owner_a = vec![None; count];
+    let mut owner_b = vec![None; count];
+    for (k, h) in ha.iter().enumerate() {
+        owner_a[h.index()] = Some(k as u32);
+    }
+    for (k, h) in hb.iter().enumerate() {
+        owner_b[h.index()] = Some(k as u32);
+    }
+    let disc: Vec<Point> = cdt
+        .fixed_vertices()
+        .map(|v| {
+            let p = cdt.vertex(v).position();
+            Point::new(p.x, p.y)
+        })
+        .collect();
+    let mut triangles = Vec::with_capacity(cdt.num_inner_faces());
+    for f in cdt.fixed_inner_faces() {
+        let mut t = cdt.face(f).vertices().map(|v| v.fix().index() as u32);
+        let o = orient2d(disc[t[0] as usize], disc[t[1] as usize], disc[t[2] as usize]);
+        if o == 0.0 {
+            continue;
+        }
+        if o < 0.0 {
+            t.swap(1, 2);
+        }
+        triangles.push(t);
+    }
+    Ok((disc, owner_a, owner_b, triangles))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::sanity_check;
+
+    fn pair(source: Vec<Point>, target: Vec<Point>) -> CurvePair {
+        CurvePair {
+            id: "boundary".into(),
+            kind: CurveKind::Boundary,
+            closed: true,
+            salient: vec![0],
+            source,
+            target,
+        }
+    }
+
+    /// A comb and a spiral-ish star with the same vertex count: their own triangulations share
+    /// few diagonals, so the overlay has crossings, and both meshes must still be valid.
+    fn star(n: usize, k: f64, phase: f64) -> Vec<Point> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64 + phase;
+                let r = 1.0 + 0.6 * (k * a).sin();
+                Point::new(r * a.cos(), r * a.sin())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn overlaid_outlines_are_compatible_and_unfolded() {
+        for (k1, k2, n) in [(3.0, 5.0, 60), (2.0, 7.0, 84), (4.0, 4.0, 40)] {
+            let (s, t) = (star(n, k1, 0.0), star(n, k2, 0.3));
+            let o = pair(s.clone(), t.clone());
+            let m = compatible_outlines(&o, &Tolerances::new(4.0, 1.0)).unwrap();
+            let r = sanity_check(&m, Some(&[t.clone()]), 1e-12);
+            assert!(r.is_ok(), "{k1} {k2}: {r:?}");
+            for (i, (a, b)) in s.iter().zip(&t).enumerate() {
+                assert_eq!(m.source[i], *a);
+                assert_eq!(m.target[i], *b);
+            }
+        }
+    }
+
+}
