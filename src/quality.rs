@@ -96,6 +96,101 @@ pub fn area_through_time(
         .collect()
 }
 
+/// Arc-length samples of a closed outline for [`shape_turn`].
+const TURN_SAMPLES: usize = 64;
+
+/// `n` points evenly spaced by arc length along the closed polyline `ring`, from its first
+/// vertex.
+fn ring_samples(ring: &[Point], n: usize) -> Vec<Point> {
+    let m = ring.len();
+    if m == 0 {
+        return Vec::new();
+    }
+    let lens: Vec<f64> = (0..m)
+        .map(|i| ring[i].distance(ring[(i + 1) % m]))
+        .collect();
+    let total: f64 = lens.iter().sum();
+    let mut out = Vec::with_capacity(n);
+    let (mut i, mut acc) = (0usize, 0.0);
+    for k in 0..n {
+        let s = total * k as f64 / n as f64;
+        while i + 1 < m && acc + lens[i] < s {
+            acc += lens[i];
+            i += 1;
+        }
+        let u = if lens[i] > 0.0 {
+            ((s - acc) / lens[i]).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        out.push(ring[i] + (ring[(i + 1) % m] - ring[i]) * u);
+    }
+    out
+}
+
+/// The turn (radians, in (−π, π]) that best aligns the closed outline `b` with `a` as shapes,
+/// whatever their vertex correspondence: of every start of `b`'s arc-length resampling (both
+/// wound the same way), the best-fit similarity of least residual; among starts within 2 % of
+/// the best residual — a symmetric shape fits several ways, a star at every tip — the one
+/// turning least. For an upright heart and an upright star it is about 0: any turn a morph
+/// between them shows mid-way is spin that neither end has (issue #7, item 7).
+pub fn shape_turn(a: &[Point], b: &[Point]) -> f64 {
+    shape_turn_near(a, b, 0.0)
+}
+
+/// [`shape_turn`] where symmetry leaves a choice, the fit turning nearest to `prefer` (radians)
+/// instead of the least: a part of an icon whose whole figure turns by `prefer` takes the
+/// figure's turn when its own shape cannot tell (a bar turned half round looks unturned).
+pub fn shape_turn_near(a: &[Point], b: &[Point], prefer: f64) -> f64 {
+    let wind = |r: &[Point]| -> Vec<Point> {
+        let mut r = r.to_vec();
+        if crate::geometry::polygon_area(&r) < 0.0 {
+            r.reverse();
+        }
+        r
+    };
+    let (sa, sb) = (
+        ring_samples(&wind(a), TURN_SAMPLES),
+        ring_samples(&wind(b), TURN_SAMPLES),
+    );
+    if sa.len() < 3 || sb.len() < 3 {
+        return 0.0;
+    }
+    let n = sb.len();
+    let fits: Vec<(f64, f64)> = (0..n)
+        .map(|j| {
+            let rotated: Vec<Point> = (0..n).map(|i| sb[(i + j) % n]).collect();
+            let f = crate::geometry::SimilarityFit::new(&sa, &rotated);
+            let explained =
+                (f.dot * f.dot + f.cross * f.cross) / f.from_spread.max(f64::MIN_POSITIVE);
+            let residual =
+                ((f.to_spread - explained) / f.to_spread.max(f64::MIN_POSITIVE)).max(0.0);
+            (residual, f.rotation())
+        })
+        .collect();
+    let best = fits.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
+    let off = |x: f64| {
+        let d = x - prefer;
+        d.sin().atan2(d.cos()).abs()
+    };
+    fits.iter()
+        .filter(|f| f.0 <= best + 0.02)
+        .map(|f| f.1)
+        .min_by(|x, y| off(*x).total_cmp(&off(*y)))
+        .unwrap_or(0.0)
+}
+
+/// The spin of a morph's middle frame (radians, ≥ 0): how far the best-fit turn of the outline
+/// from the source (`a`) to the frame at t = ½ (`mid`, vertex for vertex) is from half the
+/// shapes' own turn ([`shape_turn`] of `a` to the target `b`). A morph between two upright
+/// shapes that tips its middle frame over by 30° spins 30°.
+pub fn spin(a: &[Point], b: &[Point], mid: &[Point]) -> f64 {
+    let half = 0.5 * shape_turn(a, b);
+    let turned = crate::geometry::SimilarityFit::new(a, mid).rotation();
+    let d = turned - half;
+    d.sin().atan2(d.cos()).abs()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

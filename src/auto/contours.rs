@@ -9,7 +9,7 @@
 //! centre lines of any visible length are kept (a short one with round caps is a dot).
 
 use crate::artwork::{Item, Scene};
-use crate::geometry::{point_in_polygon, polygon_area, Point};
+use crate::geometry::{polygon_area, Point};
 
 /// What a contour outlines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,7 +67,9 @@ pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
                 .collect();
             for shape in filled_region(&rings, fill.even_odd) {
                 let mut rings = shape.into_iter().map(|r| separate_pinches(r, tolerance));
-                let Some(outline) = rings.next() else { continue };
+                let Some(outline) = rings.next() else {
+                    continue;
+                };
                 if outline.len() < 3 || polygon_area(&outline).abs() < min_area {
                     continue;
                 }
@@ -92,7 +94,7 @@ pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
 }
 
 /// The region `rings` fill under the even-odd or non-zero rule, as shapes: each an outer ring
-/// followed by its holes, every ring without self-crossings (i_overlay). A ring may still touch
+/// followed by its holes, every ring without self-crossings (`i_overlay`). A ring may still touch
 /// itself at a vertex (a hole pinched onto its outline comes back as one ring visiting the pinch
 /// twice), which [`separate_pinches`] resolves.
 fn filled_region(rings: &[Vec<Point>], even_odd: bool) -> Vec<Vec<Vec<Point>>> {
@@ -102,7 +104,11 @@ fn filled_region(rings: &[Vec<Point>], even_odd: bool) -> Vec<Vec<Vec<Point>>> {
         .iter()
         .map(|r| r.iter().map(|p| [p.x, p.y]).collect())
         .collect();
-    if input.iter().flatten().any(|p| !(p[0].is_finite() && p[1].is_finite())) {
+    if input
+        .iter()
+        .flatten()
+        .any(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
         return Vec::new();
     }
     let rule = if even_odd {
@@ -151,7 +157,10 @@ fn separate_pinches(mut ring: Vec<Point>, tolerance: f64) -> Vec<Point> {
     for k in repeated {
         let v = original[k];
         let (prev, next) = (original[(k + n - 1) % n], original[(k + 1) % n]);
-        let (u1, u2) = ((prev - v).normalize_or_zero(), (next - v).normalize_or_zero());
+        let (u1, u2) = (
+            (prev - v).normalize_or_zero(),
+            (next - v).normalize_or_zero(),
+        );
         let mut d = (u1 + u2).normalize_or_zero();
         if d == Point::ZERO {
             d = Point::new(-u2.y, u2.x);

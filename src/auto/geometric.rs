@@ -82,6 +82,14 @@ enum Place {
     Rider(usize, Vec<Point>),
     /// Where it is.
     Still(Vec<Point>),
+    /// About a point that moves: each point keeps its offset from `anchor`, turned with rider
+    /// `rider` (its rotation only, not its scale) and carried to where `centre` is in the frame.
+    About {
+        centre: Box<Place>,
+        rider: Option<usize>,
+        anchor: Point,
+        points: Vec<Point>,
+    },
 }
 
 impl Place {
@@ -96,6 +104,33 @@ impl Place {
                 pts.iter().map(|&p| m.apply(p)).collect()
             }
             Place::Still(pts) => pts.clone(),
+            Place::About {
+                centre,
+                rider,
+                anchor,
+                points,
+            } => {
+                let c = centre.at(meshes, vertices, riders)[0];
+                let (cos, sin) = match rider {
+                    Some(k) => {
+                        let m = riders[*k].motion(vertices);
+                        let r = m.a.hypot(m.b);
+                        if r > 0.0 {
+                            (m.a / r, m.b / r)
+                        } else {
+                            (1.0, 0.0)
+                        }
+                    }
+                    None => (1.0, 0.0),
+                };
+                points
+                    .iter()
+                    .map(|&p| {
+                        let d = p - *anchor;
+                        c + Point::new(cos * d.x - sin * d.y, sin * d.x + cos * d.y)
+                    })
+                    .collect()
+            }
         }
     }
 }
@@ -188,6 +223,18 @@ enum Ring {
     },
 }
 
+/// The size of a shrinking (`closing`) or growing ring at `t`: `√(1 − t)` or `√t`, so that its
+/// area — and a stroke's ink, length times width — moves linearly between its ends, as the
+/// area of the rest of the morph does, instead of dipping with `(1 − t)²`.
+fn shrink(closing: bool, t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    if closing {
+        (1.0 - t).sqrt()
+    } else {
+        t.sqrt()
+    }
+}
+
 /// A polyline's orientation set: positive signed area for an outline, negative for a hole.
 fn oriented(mut pts: Vec<Point>, hole: bool) -> Vec<Point> {
     let a = polygon_area(&pts);
@@ -217,8 +264,16 @@ impl MorphingPath {
         let mut path = BezPath::new();
         for (&c, &hole) in self.curves.iter().zip(&self.curve_holes) {
             let curve = &meshes.curves[c];
-            let pts: Vec<Point> = curve.vertices.iter().map(|&v| vertices[v as usize]).collect();
-            let pts = if curve.closed { oriented(pts, hole) } else { pts };
+            let pts: Vec<Point> = curve
+                .vertices
+                .iter()
+                .map(|&v| vertices[v as usize])
+                .collect();
+            let pts = if curve.closed {
+                oriented(pts, hole)
+            } else {
+                pts
+            };
             push_ring(&mut path, &pts, curve.closed);
         }
         // Every frame has the same subpaths (the animated SVG animates one `d`); a ring of
@@ -228,7 +283,8 @@ impl MorphingPath {
                 Ring::Blended { source, target } => {
                     let a = source.at(meshes, vertices, &self.riders);
                     let b = target.at(meshes, vertices, &self.riders);
-                    let pts: Vec<Point> = a.iter().zip(&b).map(|(p, q)| *p + (*q - *p) * t).collect();
+                    let pts: Vec<Point> =
+                        a.iter().zip(&b).map(|(p, q)| *p + (*q - *p) * t).collect();
                     push_ring(&mut path, &oriented(pts, true), true);
                 }
                 Ring::Sized {
@@ -239,7 +295,7 @@ impl MorphingPath {
                     closed,
                 } => {
                     let pts = ring.at(meshes, vertices, &self.riders);
-                    let size = if *closing { 1.0 - t } else { t };
+                    let size = shrink(*closing, t);
                     let c = match centre {
                         Some(c) => c.at(meshes, vertices, &self.riders)[0],
                         None => crate::geometry::centroid(&pts),
@@ -282,11 +338,7 @@ impl MorphingPath {
             }),
             _ => None,
         };
-        let size = match self.sized_stroke {
-            Some(true) => 1.0 - t,
-            Some(false) => t,
-            None => 1.0,
-        };
+        let size = self.sized_stroke.map_or(1.0, |closing| shrink(closing, t));
         let stroke = match (&self.source.stroke, &self.target.stroke) {
             (Some(a), Some(b)) => Some(Stroke {
                 paint: colour(&a.paint, &b.paint),
@@ -381,13 +433,20 @@ fn paired_rings(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>) {
                 acc += lens[i];
                 i += 1;
             }
-            let u = if lens[i] > 0.0 { ((s - acc) / lens[i]).clamp(0.0, 1.0) } else { 0.0 };
+            let u = if lens[i] > 0.0 {
+                ((s - acc) / lens[i]).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             out.push(r[i] + (r[(i + 1) % m] - r[i]) * u);
         }
         out
     };
     let (ra, rb) = (resample(a), resample(b));
-    let (ca, cb) = (crate::geometry::centroid(&ra), crate::geometry::centroid(&rb));
+    let (ca, cb) = (
+        crate::geometry::centroid(&ra),
+        crate::geometry::centroid(&rb),
+    );
     let shift = (0..n)
         .min_by(|&x, &y| {
             let cost = |s: usize| -> f64 {
@@ -433,14 +492,22 @@ pub(crate) fn morphing_paths(
     meshes: &CompatibleMeshes,
 ) -> Vec<MorphingPath> {
     let (ps, pt) = (plain_paths(source_scene), plain_paths(target_scene));
-    let of_triangle = meshes.parts.as_ref().map(|p| p.of_triangle.as_slice()).unwrap_or(&[]);
+    let of_triangle = meshes
+        .parts
+        .as_ref()
+        .map(|p| p.of_triangle.as_slice())
+        .unwrap_or(&[]);
     // A locator over one part's triangles, on one side.
     let locate = |k: usize, source: bool, pts: &[Point]| -> Option<Place> {
         let m = &matched.parts[k].meshes;
         if m.triangles.is_empty() {
             return None;
         }
-        let rest = if source { &meshes.source } else { &meshes.target };
+        let rest = if source {
+            &meshes.source
+        } else {
+            &meshes.target
+        };
         let l = PointLocator::of_triangles(rest, &meshes.triangles, |i| {
             of_triangle.get(i) == Some(&(k as u32))
         })
@@ -450,7 +517,14 @@ pub(crate) fn morphing_paths(
     // A rider on part k's outline, on one side.
     let rider_of = |k: usize, source: bool| -> Rider {
         let c = &meshes.curves[matched.curve_offset[k]];
-        Rider::new(&c.vertices, if source { &meshes.source } else { &meshes.target })
+        Rider::new(
+            &c.vertices,
+            if source {
+                &meshes.source
+            } else {
+                &meshes.target
+            },
+        )
     };
     let mut groups: BTreeMap<(Option<usize>, Option<usize>), Gathered> = BTreeMap::new();
     for (k, plan) in matched.plans.iter().enumerate() {
@@ -472,7 +546,7 @@ pub(crate) fn morphing_paths(
             g.curve_holes.push(true);
         }
         // Places for rings of this part: its mesh, else a rider on its outline.
-        let mut place = |g: &mut Gathered, source: bool, pts: &[Point]| -> Place {
+        let place = |g: &mut Gathered, source: bool, pts: &[Point]| -> Place {
             locate(k, source, pts).unwrap_or_else(|| {
                 g.riders.push(rider_of(k, source));
                 Place::Rider(g.riders.len() - 1, pts.to_vec())
@@ -489,7 +563,10 @@ pub(crate) fn morphing_paths(
         }
         for (contours, outline, source) in [(cs, plan.source, true), (ct, plan.target, false)] {
             for (h, c) in contours.iter().enumerate() {
-                let paired = plan.holes.iter().any(|p| if source { p.0 == h } else { p.1 == h });
+                let paired = plan
+                    .holes
+                    .iter()
+                    .any(|p| if source { p.0 == h } else { p.1 == h });
                 if c.parent != Some(outline) || paired {
                     continue;
                 }
@@ -512,7 +589,13 @@ pub(crate) fn morphing_paths(
         let own = groups
             .keys()
             .copied()
-            .filter(|&(i, j)| if lone.source { i == Some(item) } else { j == Some(item) })
+            .filter(|&(i, j)| {
+                if lone.source {
+                    i == Some(item)
+                } else {
+                    j == Some(item)
+                }
+            })
             .min_by_key(|key| {
                 // Prefer the group holding the host part.
                 let holds = lone
@@ -526,7 +609,9 @@ pub(crate) fn morphing_paths(
         };
         let host_key = lone.host.and_then(|(k, _)| {
             let key = *groups.keys().find(|key| groups[key].parts.contains(&k))?;
-            let theirs = paths.get((if lone.source { key.0 } else { key.1 })?)?.as_ref()?;
+            let theirs = paths
+                .get((if lone.source { key.0 } else { key.1 })?)?
+                .as_ref()?;
             same_paint(mine, theirs).then_some(key)
         });
         // Else on its own: the path shrinks away (grows) in its own paint.
@@ -552,20 +637,28 @@ pub(crate) fn morphing_paths(
                 g.covers.1.push(item);
             }
         }
-        let (place_of, centre): (Box<dyn Fn(&[Point]) -> Place>, Option<Place>) = match lone.host {
+        // The shape shrinks about the point it goes into, turning with its host but keeping
+        // its own size: riding the host's scale would swell it over a host that grows.
+        let (anchor, centre, rider) = match lone.host {
             Some((k, c)) => {
                 g.riders.push(rider_of(k, lone.source));
                 let r = g.riders.len() - 1;
-                (
-                    Box::new(move |pts: &[Point]| Place::Rider(r, pts.to_vec())),
-                    Some(Place::Rider(r, vec![c])),
-                )
+                // The point it goes into rides the host exactly where the host has a mesh.
+                let centre = locate(k, lone.source, &[c]).unwrap_or(Place::Rider(r, vec![c]));
+                (c, centre, Some(r))
             }
-            None => (
-                Box::new(|pts: &[Point]| Place::Still(pts.to_vec())),
-                Some(Place::Still(vec![contours[lone.contour].centroid])),
-            ),
+            None => {
+                let c = contours[lone.contour].centroid;
+                (c, Place::Still(vec![c]), None)
+            }
         };
+        let place_of = |pts: &[Point]| Place::About {
+            centre: Box::new(centre.clone()),
+            rider,
+            anchor,
+            points: pts.to_vec(),
+        };
+        let centre = Some(centre.clone());
         let outline = &contours[lone.contour];
         g.rings.push(Ring::Sized {
             ring: place_of(&outline.points),
@@ -755,12 +848,21 @@ pub(crate) fn in_paint_order(paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
 mod tests {
     use super::*;
 
-    fn path(source_item: usize, target_item: usize) -> MorphingPath {
-        let (source_item, target_item) = (Some(source_item), Some(target_item));
+    /// A morphing path between items; `paint` tells its colour (the same on both sides).
+    fn path(source_item: Option<usize>, target_item: Option<usize>, paint: u8) -> MorphingPath {
         let p = PathItem {
             id: String::new(),
             path: BezPath::new(),
-            fill: None,
+            fill: Some(Fill {
+                paint: Paint::Color(crate::artwork::Rgba {
+                    r: paint,
+                    g: 0,
+                    b: 0,
+                    a: 255,
+                }),
+                opacity: 1.0,
+                even_odd: false,
+            }),
             stroke: None,
             stroke_first: false,
         };
@@ -780,8 +882,12 @@ mod tests {
         }
     }
 
-    fn order(pairs: &[(usize, usize)]) -> Vec<(usize, usize)> {
-        let paths = pairs.iter().map(|&(s, t)| path(s, t)).collect();
+    /// Paint order of paths `(source, target)`, each its own colour unless `one_paint`.
+    fn order(pairs: &[(usize, usize)], one_paint: bool) -> Vec<(usize, usize)> {
+        let paths = pairs
+            .iter()
+            .map(|&(s, t)| path(Some(s), Some(t), if one_paint { 0 } else { s as u8 }))
+            .collect();
         in_paint_order(paths)
             .iter()
             .map(|p| (p.source_item.unwrap(), p.target_item.unwrap()))
@@ -790,19 +896,48 @@ mod tests {
 
     #[test]
     fn paint_order_keeps_the_largest_consistent_subset() {
-        assert_eq!(order(&[]), []);
+        assert_eq!(order(&[], false), []);
         assert_eq!(
-            order(&[(2, 5), (0, 1)]),
+            order(&[(2, 5), (0, 1)], false),
             [(0, 1), (2, 5)],
             "sorted by source"
         );
         // Source order 0..4 with targets 3 1 2 0: the run 1 2 is the longest.
-        assert_eq!(order(&[(0, 3), (1, 1), (2, 2), (3, 0)]), [(1, 1), (2, 2)]);
+        assert_eq!(
+            order(&[(0, 3), (1, 1), (2, 2), (3, 0)], false),
+            [(1, 1), (2, 2)]
+        );
         // Swapped pair in the middle: one of the two goes.
-        let kept = order(&[(0, 0), (1, 4), (2, 3), (3, 6)]);
+        let kept = order(&[(0, 0), (1, 4), (2, 3), (3, 6)], false);
         assert_eq!(kept.len(), 3);
         assert!(kept.windows(2).all(|w| w[0].1 < w[1].1));
-        // A target claimed twice is kept once.
-        assert_eq!(order(&[(0, 2), (1, 2)]).len(), 1);
+        // Two source paths drawing into one target path both morph (non-decreasing).
+        assert_eq!(order(&[(0, 2), (1, 2)], false), [(0, 2), (1, 2)]);
+        // Of one paint, order shows nowhere: every path morphs.
+        assert_eq!(
+            order(&[(0, 3), (1, 1), (2, 2), (3, 0)], true),
+            [(0, 3), (1, 1), (2, 2), (3, 0)]
+        );
+    }
+
+    #[test]
+    fn one_sided_paths_go_where_their_side_puts_them() {
+        let paths = vec![
+            path(Some(0), Some(0), 1),
+            path(Some(4), Some(2), 2),
+            path(Some(2), None, 3),
+            path(None, Some(1), 4),
+        ];
+        let got: Vec<(Option<usize>, Option<usize>)> = in_paint_order(paths)
+            .iter()
+            .map(|p| (p.source_item, p.target_item))
+            .collect();
+        // Each side's items come in that side's order, every path kept.
+        assert_eq!(got.len(), 4);
+        type Items = (Option<usize>, Option<usize>);
+        let side =
+            |f: fn(&Items) -> Option<usize>| -> Vec<usize> { got.iter().filter_map(f).collect() };
+        assert_eq!(side(|p| p.0), [0, 2, 4]);
+        assert_eq!(side(|p| p.1), [0, 1, 2]);
     }
 }

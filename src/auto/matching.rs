@@ -77,7 +77,14 @@ fn matched(
             .filter(|&i| c[i].kind != ContourKind::Hole)
             .collect()
     };
-    let mut pairs = assign(source, target, &tops(source), &tops(target), diagonal, leave);
+    let mut pairs = assign(
+        source,
+        target,
+        &tops(source),
+        &tops(target),
+        diagonal,
+        leave,
+    );
     // Holes, within each pair of matched outlines.
     let outer: Vec<(usize, usize)> = pairs.clone();
     for (a, b) in outer {

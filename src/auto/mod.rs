@@ -27,7 +27,6 @@ pub mod contours;
 pub mod geometric;
 pub mod matching;
 pub mod part;
-mod seed;
 mod union;
 
 use crate::artwork::{Item, Scene};
@@ -44,7 +43,7 @@ const PADDING: f64 = 0.05;
 
 /// A shape without a partner farther than this fraction of the drawing's diagonal from every
 /// paired shape grows or shrinks where it is instead of into one of them.
-const HOST_REACH: f64 = 0.15;
+const HOST_REACH: f64 = 0.25;
 
 /// How one pair of shapes morphs.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,7 +98,11 @@ impl std::fmt::Display for AutoReport {
             f.write_str(")")?;
         }
         for l in &self.lone {
-            let verb = if l.shrinks { "shrinks into" } else { "grows out of" };
+            let verb = if l.shrinks {
+                "shrinks into"
+            } else {
+                "grows out of"
+            };
             match &l.host {
                 Some(h) => write!(f, "; {} {verb} {h}", l.shape)?,
                 None => write!(
@@ -145,7 +148,6 @@ pub(crate) struct Lone {
 pub(crate) struct Matched {
     pub(crate) plans: Vec<PartPlan>,
     pub(crate) parts: Vec<PartMesh>,
-    pub(crate) vertex_offset: Vec<u32>,
     pub(crate) curve_offset: Vec<usize>,
     pub(crate) lone: Vec<Lone>,
 }
@@ -193,6 +195,7 @@ pub fn build_auto(
         target,
         opts,
         step,
+        figure_turn: figure_turn(&plans, &cs, &ct, diagonal),
     };
     let built: Vec<Result<PartMesh>> = plans
         .par_iter()
@@ -218,7 +221,13 @@ pub fn build_auto(
     let area_region: Vec<[u32; 3]> = meshes
         .triangles
         .iter()
-        .zip(&meshes.parts.as_ref().map(|p| p.of_triangle.clone()).unwrap_or_default())
+        .zip(
+            &meshes
+                .parts
+                .as_ref()
+                .map(|p| p.of_triangle.clone())
+                .unwrap_or_default(),
+        )
         .filter(|(_, &k)| k as usize != parts.len())
         .map(|(t, _)| *t)
         .collect();
@@ -230,7 +239,6 @@ pub fn build_auto(
     let matched = Matched {
         plans,
         parts,
-        vertex_offset: placed.vertex_offset,
         curve_offset: placed.curve_offset,
         lone,
     };
@@ -282,6 +290,25 @@ pub fn build_auto(
     Ok((c, report, source.clone(), target.clone()))
 }
 
+/// The best-fit turn of the paired outlines' centroids from source to target, when there are
+/// two or more and they are spread out (beyond a tenth of the diagonal from their mean): how
+/// the figure as a whole turns.
+fn figure_turn(plans: &[PartPlan], cs: &[Contour], ct: &[Contour], diagonal: f64) -> Option<f64> {
+    let closed: Vec<&PartPlan> = plans
+        .iter()
+        .filter(|p| cs[p.source].closed && ct[p.target].closed)
+        .collect();
+    if closed.len() < 2 {
+        return None;
+    }
+    let a: Vec<Point> = closed.iter().map(|p| cs[p.source].centroid).collect();
+    let b: Vec<Point> = closed.iter().map(|p| ct[p.target].centroid).collect();
+    let f = crate::geometry::SimilarityFit::new(&a, &b);
+    let spread = |s: f64| (s / closed.len() as f64).sqrt();
+    (spread(f.from_spread) > 0.1 * diagonal && spread(f.to_spread) > 0.1 * diagonal)
+        .then(|| f.rotation())
+}
+
 /// The still frame: both view boxes' union, padded.
 fn still_frame(a: &Scene, b: &Scene) -> (Point, Point) {
     let lo = a.view_box.0.min(b.view_box.0);
@@ -292,7 +319,9 @@ fn still_frame(a: &Scene, b: &Scene) -> (Point, Point) {
 
 /// The shapes (outlines and strokes) that no part pairs, each with the paired shape it goes
 /// into or comes out of: the part whose outline on its side is nearest, within
-/// [`HOST_REACH`] of the diagonal, and there the filled point nearest the lone shape's centre.
+/// [`HOST_REACH`] of the diagonal, and there the point of its outline (or centre line) nearest
+/// the lone shape's centre — so that the shape slides into the host's edge as it shrinks
+/// rather than across the host.
 fn lone_shapes(
     cs: &[Contour],
     ct: &[Contour],
@@ -327,17 +356,10 @@ fn lone_shapes(
                     best = Some((d, k));
                 }
             }
-            let host = best.and_then(|(_, k)| {
+            let host = best.map(|(_, k)| {
                 let p = &plans[k];
                 let outline = &contours[if source { p.source } else { p.target }];
-                let their_holes: Vec<&Contour> = contours
-                    .iter()
-                    .filter(|h| h.parent == Some(if source { p.source } else { p.target }))
-                    .collect();
-                if outline.kind == ContourKind::Stroke {
-                    return Some((k, nearest_on(outline, contour.centroid)));
-                }
-                seed::seed_place(outline, &their_holes, contour.centroid).map(|(c, _)| (k, c))
+                (k, nearest_on(outline, contour.centroid))
             });
             out.push(Lone {
                 contour: c,
@@ -377,7 +399,9 @@ fn gap(a: &Contour, b: &Contour) -> f64 {
         .iter()
         .map(|&p| {
             (0..edges)
-                .map(|i| crate::geometry::point_segment_distance(p, b.points[i], b.points[(i + 1) % n]).0)
+                .map(|i| {
+                    crate::geometry::point_segment_distance(p, b.points[i], b.points[(i + 1) % n]).0
+                })
                 .fold(f64::INFINITY, f64::min)
         })
         .fold(f64::INFINITY, f64::min)

@@ -106,6 +106,9 @@ pub(crate) struct PartInputs<'a> {
     pub(crate) opts: &'a MorphOptions,
     /// Extra vertex spacing along straight runs (see [`densify`]).
     pub(crate) step: f64,
+    /// The turn of the whole figure (the best-fit turn of the paired outlines' centroids), when
+    /// it has several spread-out parts: a symmetric part takes it (`quality::shape_turn_near`).
+    pub(crate) figure_turn: Option<f64>,
 }
 
 /// The tolerances of a part: relative to its own size, so that a small part gets a mesh as
@@ -113,7 +116,8 @@ pub(crate) struct PartInputs<'a> {
 /// (tiny parts keep their flattened outline vertices and a coarse interior).
 fn part_tolerances(a: &Contour, b: &Contour, drawing_diagonal: f64, density: f64) -> Tolerances {
     let size = |c: &Contour| {
-        crate::geometry::bounding_box(c.points.iter().copied()).map_or(0.0, |(lo, hi)| lo.distance(hi))
+        crate::geometry::bounding_box(c.points.iter().copied())
+            .map_or(0.0, |(lo, hi)| lo.distance(hi))
     };
     let d = size(a).max(size(b)).max(0.25 * drawing_diagonal);
     Tolerances::new(d, density)
@@ -194,40 +198,68 @@ pub(crate) fn build_part(
         .diagonal
         .max(inputs.target.tolerances.diagonal);
     let tol = part_tolerances(a, b, diagonal, inputs.opts.density);
-    let reach = inputs.opts.correspondence.anchor_reach * diagonal;
-    let drawing = |d: &Drawing, outline: &Contour, holes: Vec<(&str, &Contour)>, others: &[&Contour]| {
-        let mut d = d.clone();
-        d.tolerances = tol;
-        d.controls.boundary = curve("boundary", CurveKind::Boundary, outline, inputs.step);
-        d.controls.boundary_from_view_box = false;
-        d.controls.features = holes
-            .iter()
-            .map(|(id, h)| curve(id, CurveKind::Feature, h, inputs.step))
-            .collect();
-        d.controls.features.sort_by(|x, y| x.name.cmp(&y.name));
-        let mut near: Vec<&Contour> = vec![outline];
-        near.extend(others.iter().copied());
-        d.controls.anchors = anchors_near(&d.controls.anchors, &near, reach);
-        d.controls.skeleton.clear();
-        d
+    // The shapes' own turn steers the outline's correspondence, so that the morph does not
+    // spin where neither end is turned (issue #7, item 7).
+    let mut opts = inputs.opts.clone();
+    if a.closed && b.closed {
+        opts.correspondence.outline_turn = Some(crate::quality::shape_turn_near(
+            &a.points,
+            &b.points,
+            inputs.figure_turn.unwrap_or(0.0),
+        ));
+    }
+    let inputs = &PartInputs {
+        opts: &opts,
+        ..*inputs
     };
+    let reach = inputs.opts.correspondence.anchor_reach * diagonal;
+    let drawing =
+        |d: &Drawing, outline: &Contour, holes: Vec<(&str, &Contour)>, others: &[&Contour]| {
+            let mut d = d.clone();
+            d.tolerances = tol;
+            d.controls.boundary = curve("boundary", CurveKind::Boundary, outline, inputs.step);
+            d.controls.boundary_from_view_box = false;
+            d.controls.features = holes
+                .iter()
+                .map(|(id, h)| curve(id, CurveKind::Feature, h, inputs.step))
+                .collect();
+            d.controls.features.sort_by(|x, y| x.name.cmp(&y.name));
+            let mut near: Vec<&Contour> = vec![outline];
+            near.extend(others.iter().copied());
+            d.controls.anchors = anchors_near(&d.controls.anchors, &near, reach);
+            d.controls.skeleton.clear();
+            d
+        };
     // Rung 1: the paper's mapping, holes given up one at a time (strokes have no inside).
     let stroke = a.kind == super::contours::ContourKind::Stroke;
     let mut holes: Vec<(usize, usize)> = plan.holes.clone();
-    while !stroke {
-        let names: Vec<String> = (0..holes.len()).map(|k| format!("feature-hole-{k}")).collect();
+    loop {
+        if stroke {
+            break;
+        }
+        let names: Vec<String> = (0..holes.len())
+            .map(|k| format!("feature-hole-{k}"))
+            .collect();
         let hs: Vec<&Contour> = holes.iter().map(|&(h, _)| &cs[h]).collect();
         let ht: Vec<&Contour> = holes.iter().map(|&(_, h)| &ct[h]).collect();
         let s = drawing(
             inputs.source,
             a,
-            names.iter().map(String::as_str).zip(hs.iter().copied()).collect(),
+            names
+                .iter()
+                .map(String::as_str)
+                .zip(hs.iter().copied())
+                .collect(),
             &hs,
         );
         let t = drawing(
             inputs.target,
             b,
-            names.iter().map(String::as_str).zip(ht.iter().copied()).collect(),
+            names
+                .iter()
+                .map(String::as_str)
+                .zip(ht.iter().copied())
+                .collect(),
             &ht,
         );
         // Anchors must pin the same names on both sides.
@@ -252,7 +284,11 @@ pub(crate) fn build_part(
                         .enumerate()
                         .filter_map(|(k, &h)| {
                             let id = format!("feature-hole-{k}");
-                            c.meshes.curves.iter().position(|m| m.name == id).map(|i| (h, i))
+                            c.meshes
+                                .curves
+                                .iter()
+                                .position(|m| m.name == id)
+                                .map(|i| (h, i))
                         })
                         .collect::<Vec<_>>();
                     return Ok(PartMesh {
@@ -311,8 +347,14 @@ pub(crate) fn build_part(
                 .map(|y| (x.point, y.point))
         })
         .collect();
-    let outline = correspond(&s.controls.boundary, &t.controls.boundary, &pins, &tol, &copts)
-        .map_err(|e| e.in_file(format!("{} → {}", inputs.source.file, inputs.target.file)))?;
+    let outline = correspond(
+        &s.controls.boundary,
+        &t.controls.boundary,
+        &pins,
+        &tol,
+        &copts,
+    )
+    .map_err(|e| e.in_file(format!("{} → {}", inputs.source.file, inputs.target.file)))?;
     let overlaid = if stroke {
         None
     } else {
@@ -371,8 +413,8 @@ pub(crate) fn build_part(
     })
 }
 
-/// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/8
-/// (k = 1…7): a mesh whose frames fold is no better than a failed mapping.
+/// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/16
+/// (k = 1…15): a mesh whose frames fold is no better than a failed mapping.
 fn moves_without_folding(c: &Compatible) -> Result<()> {
     let m = &c.meshes;
     let interp = crate::rigid::Interpolator::new(
@@ -381,7 +423,7 @@ fn moves_without_folding(c: &Compatible) -> Result<()> {
         &m.target,
         &m.triangles,
     )?;
-    let ts: Vec<f64> = (1..8).map(|i| i as f64 / 8.0).collect();
+    let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
     for (t, f) in ts.iter().zip(interp.frames(&ts)) {
         let folded = crate::mesh::count_inverted(&m.triangles, &f);
         if folded > 0 {

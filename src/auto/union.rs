@@ -11,8 +11,6 @@ use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve, Parts};
 /// Where each shape pair went in the union.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Placed {
-    /// First vertex of each part.
-    pub(crate) vertex_offset: Vec<u32>,
     /// First curve of each part.
     pub(crate) curve_offset: Vec<usize>,
 }
@@ -28,12 +26,10 @@ pub(crate) fn union(
     let mut of_triangle = Vec::new();
     let mut chains = Vec::new();
     let mut placed = Placed {
-        vertex_offset: Vec::new(),
         curve_offset: Vec::new(),
     };
     for (k, p) in parts.iter().enumerate() {
         let o = m.source.len() as u32;
-        placed.vertex_offset.push(o);
         placed.curve_offset.push(m.curves.len());
         m.source.extend_from_slice(&p.meshes.source);
         m.target.extend_from_slice(&p.meshes.target);

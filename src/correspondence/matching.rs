@@ -22,7 +22,15 @@ pub(crate) struct Mark {
     pub(crate) u: f64,
     /// Signed turning angle (radians).
     pub(crate) turning: f64,
+    /// Direction (radians) from the curve's centroid, when the match should respect the
+    /// shapes' own turn ([`CorrespondenceOptions::outline_turn`]).
+    pub(crate) bearing: Option<f64>,
 }
+
+/// Weight of a pair's disagreement with the shapes' own turn, per half turn, in the pairing
+/// cost (against normalized arc length): a tip paired with a tip a quarter turn away from
+/// where the shapes' turn puts it costs as much as a fifth of the outline's length.
+const TURN_WEIGHT: f64 = 0.4;
 
 /// The cost of pairing `a` with `b`, or `None` when they may not be paired.
 fn pair_cost(a: Mark, b: Mark, opts: &CorrespondenceOptions) -> Option<f64> {
@@ -36,9 +44,17 @@ fn pair_cost(a: Mark, b: Mark, opts: &CorrespondenceOptions) -> Option<f64> {
     if hi > lo * opts.max_turning_ratio.max(1.0) {
         return None;
     }
+    let turn = match (a.bearing, b.bearing, opts.outline_turn) {
+        (Some(x), Some(y), Some(th)) => {
+            let d = y - x - th;
+            TURN_WEIGHT * d.sin().atan2(d.cos()).abs() / std::f64::consts::PI
+        }
+        _ => 0.0,
+    };
     Some(
         (a.u - b.u).abs()
-            + opts.angle_weight * (a.turning - b.turning).abs() / std::f64::consts::PI,
+            + opts.angle_weight * (a.turning - b.turning).abs() / std::f64::consts::PI
+            + turn,
     )
 }
 
@@ -100,15 +116,19 @@ pub(crate) fn associate_span(
 /// Candidate cyclic matches of two closed curves' salient points (lengths `src_len`,
 /// `tgt_len`): every match whose cost is within a hair of the least, each as matched
 /// `(source, target)` index pairs starting with its start pair. Empty when no pair is allowed.
+///
+/// `bearings` are the salient points' directions from their curve's centroid (source, target),
+/// used when [`CorrespondenceOptions::outline_turn`] is set.
 pub(crate) fn associate_cyclic(
     src: &[Salient],
     src_len: f64,
     tgt: &[Salient],
     tgt_len: f64,
+    bearings: (&[f64], &[f64]),
     opts: &CorrespondenceOptions,
 ) -> Vec<Vec<(usize, usize)>> {
     let (n, m) = (src.len(), tgt.len());
-    let marks = |pts: &[Salient], len: f64, start: usize| -> Vec<Mark> {
+    let marks = |pts: &[Salient], len: f64, start: usize, bearing: &[f64]| -> Vec<Mark> {
         let s0 = pts[start].s;
         (1..pts.len())
             .map(|k| {
@@ -116,16 +136,18 @@ pub(crate) fn associate_cyclic(
                 Mark {
                     u: (q.s - s0).rem_euclid(len) / len,
                     turning: q.turning,
+                    bearing: bearing.get((start + k) % pts.len()).copied(),
                 }
             })
             .collect()
     };
     let mut found: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
     for i in 0..n {
-        let a = marks(src, src_len, i);
+        let a = marks(src, src_len, i, bearings.0);
         let head = Mark {
             u: 0.0,
             turning: src[i].turning,
+            bearing: bearings.0.get(i).copied(),
         };
         for j in 0..m {
             let Some(c0) = pair_cost(
@@ -133,12 +155,13 @@ pub(crate) fn associate_cyclic(
                 Mark {
                     u: 0.0,
                     turning: tgt[j].turning,
+                    bearing: bearings.1.get(j).copied(),
                 },
                 opts,
             ) else {
                 continue;
             };
-            let b = marks(tgt, tgt_len, j);
+            let b = marks(tgt, tgt_len, j, bearings.1);
             let (c, rest) = associate_span(&a, &b, opts);
             let mut pairs = vec![(i, j)];
             pairs.extend(
@@ -165,6 +188,7 @@ mod tests {
         Mark {
             u,
             turning: deg.to_radians(),
+            bearing: None,
         }
     }
 
@@ -208,7 +232,7 @@ mod tests {
         };
         let src = rect([0.0, 2.0, 3.0, 5.0]);
         let tgt = rect([0.0, 1.0, 3.0, 4.0]);
-        let found = associate_cyclic(&src, 6.0, &tgt, 6.0, &opts);
+        let found = associate_cyclic(&src, 6.0, &tgt, 6.0, (&[], &[]), &opts);
         assert!(!found.is_empty());
         for pairs in &found {
             assert_eq!(pairs.len(), 4);

@@ -90,6 +90,12 @@ pub struct CorrespondenceOptions {
     /// staying put while everything around it turns (which folds any mapping). Default: `None`,
     /// the least turning.
     pub preferred_rotation: Option<f64>,
+    /// The turn (radians) the two shapes make as shapes (`crate::quality::shape_turn` of the
+    /// two boundaries), when known: the boundary's salient points are then paired so that the
+    /// pairing turns the outline by about that much, and a heart's notch is not paired with a
+    /// star's tip a fifth of a turn away (a spin neither end has). Automatic mode sets it per
+    /// shape. Default: `None`.
+    pub outline_turn: Option<f64>,
 }
 
 impl Default for CorrespondenceOptions {
@@ -106,6 +112,7 @@ impl Default for CorrespondenceOptions {
             merge_fraction: 0.2,
             anchor_reach: 0.02,
             preferred_rotation: None,
+            outline_turn: None,
         }
     }
 }
@@ -255,6 +262,8 @@ pub fn correspond_all(
         out.push(b);
         for ((s, t), p) in curves.iter().zip(&pins).skip(1) {
             let mut o = opts.clone();
+            // A feature turns with its surroundings, not with the whole outline.
+            o.outline_turn = None;
             if o.preferred_rotation.is_none() {
                 o.preferred_rotation = Some(local_turn(&out[0], &s.points));
             }
@@ -597,6 +606,7 @@ fn spans_pairs(
                         Mark {
                             u: (p.s - x0) / (x1 - x0),
                             turning: p.turning,
+                            bearing: None,
                         },
                     )
                 })
@@ -630,7 +640,20 @@ type Candidate = (Polyline, Polyline, Vec<(usize, usize)>);
 fn cyclic_pairs(sp: &Polyline, tp: &Polyline, opts: &CorrespondenceOptions) -> Vec<Candidate> {
     let ss = salient::detect(sp, opts);
     let ts = salient::detect(tp, opts);
-    let found = matching::associate_cyclic(&ss, sp.length(), &ts, tp.length(), opts);
+    let bearings = |line: &Polyline, pts: &[Salient]| -> Vec<f64> {
+        if opts.outline_turn.is_none() {
+            return Vec::new();
+        }
+        let c = crate::geometry::centroid(line.points());
+        pts.iter()
+            .map(|q| {
+                let d = line.points()[q.index] - c;
+                d.y.atan2(d.x)
+            })
+            .collect()
+    };
+    let (bs, bt) = (bearings(sp, &ss), bearings(tp, &ts));
+    let found = matching::associate_cyclic(&ss, sp.length(), &ts, tp.length(), (&bs, &bt), opts);
     let mut scored: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
     for pairs in found {
         // The same match started at another of its pairs is the same correspondence.
@@ -652,14 +675,15 @@ fn cyclic_pairs(sp: &Polyline, tp: &Polyline, opts: &CorrespondenceOptions) -> V
             .map(|&(_, y)| tp.points()[ts[y].index])
             .collect();
         scored.push((
-            orientation::turn_residual(&a, &b, opts.preferred_rotation),
+            orientation::turn_residual(&a, &b, opts.outline_turn.or(opts.preferred_rotation)),
             pairs,
         ));
     }
     // Stable: equal residuals keep the match order.
     scored.sort_by(|x, y| x.0.total_cmp(&y.0));
     if scored.is_empty() {
-        let j = orientation::best_closed_start(sp, tp, opts.preferred_rotation);
+        let j =
+            orientation::best_closed_start(sp, tp, opts.outline_turn.or(opts.preferred_rotation));
         return vec![(sp.clone(), tp.rotated(j), vec![(0, 0)])];
     }
     let (n, m) = (sp.len(), tp.len());

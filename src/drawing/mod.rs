@@ -132,12 +132,6 @@ pub struct Drawing {
     pub svg: String,
 }
 
-/// Checks the layout rules of control geometry (features inside the boundary, not crossing
-/// themselves, each other or the boundary), naming `file` and the offending curve.
-pub(crate) fn check_layout(controls: &Controls, file: &str) -> Result<()> {
-    controls::validate_layout(&controls.boundary, &controls.features, file)
-}
-
 impl Drawing {
     /// Reads and validates a drawing from SVG text; `file` names it in error messages.
     pub fn from_str(file: &str, text: &str, opts: &ReadOptions) -> Result<Self> {

@@ -8,10 +8,10 @@
 //! until none flips a triangle ([`composite`], Fig.10).
 
 mod carried;
-pub mod overlay;
-mod remesh;
 pub mod composite;
 pub mod harmonic;
+pub mod overlay;
+mod remesh;
 pub mod shape_model;
 mod untangle;
 

@@ -150,7 +150,12 @@ fn disc_points(p: &[Point], q: &[Point]) -> Vec<Point> {
 /// Overlay vertices in the disc, which of them are vertices of the source mesh `a` (and of
 /// the target mesh `b`) with their index there, and the overlay's triangles
 /// (counter-clockwise).
-type Overlaid = (Vec<Point>, Vec<Option<u32>>, Vec<Option<u32>>, Vec<[u32; 3]>);
+type Overlaid = (
+    Vec<Point>,
+    Vec<Option<u32>>,
+    Vec<Option<u32>>,
+    Vec<[u32; 3]>,
+);
 
 /// The overlay of the two disc embeddings `da` of `a` and `db` of `b` (module docs); the first
 /// `n` vertices of both are the shared boundary.
@@ -204,7 +209,11 @@ fn overlay(
     let mut triangles = Vec::with_capacity(cdt.num_inner_faces());
     for f in cdt.fixed_inner_faces() {
         let mut t = cdt.face(f).vertices().map(|v| v.fix().index() as u32);
-        let o = orient2d(disc[t[0] as usize], disc[t[1] as usize], disc[t[2] as usize]);
+        let o = orient2d(
+            disc[t[0] as usize],
+            disc[t[1] as usize],
+            disc[t[2] as usize],
+        );
         if o == 0.0 {
             continue;
         }
@@ -250,7 +259,7 @@ mod tests {
             let (s, t) = (star(n, k1, 0.0), star(n, k2, 0.3));
             let o = pair(s.clone(), t.clone());
             let m = compatible_outlines(&o, &Tolerances::new(4.0, 1.0)).unwrap();
-            let r = sanity_check(&m, Some(&[t.clone()]), 1e-12);
+            let r = sanity_check(&m, Some(std::slice::from_ref(&t)), 1e-12);
             assert!(r.is_ok(), "{k1} {k2}: {r:?}");
             for (i, (a, b)) in s.iter().zip(&t).enumerate() {
                 assert_eq!(m.source[i], *a);
@@ -258,5 +267,4 @@ mod tests {
             }
         }
     }
-
 }

@@ -63,11 +63,13 @@ fn border_areas(border: &[(u32, u32, u32)], points: &[Point], areas: &mut [f64])
 }
 
 impl AreaRule {
-    /// The rule measuring the area of `triangles` (all of a mesh's, or a region of them) over
+    /// The rule measuring the area of `triangles` (all of a mesh's, or a region of them) and of
+    /// the polygons whose directed edges are `cycles` (closed outlines without a mesh) over
     /// parts `comp[v]` (`count` parts) of a mesh with ends `source` and `target`; a part with no
     /// measured triangle is left alone. Triangles must be valid indices.
     pub(crate) fn new(
         triangles: &[[u32; 3]],
+        cycles: &[(u32, u32)],
         comp: &[u32],
         count: usize,
         source: &[Point],
@@ -75,6 +77,7 @@ impl AreaRule {
     ) -> Self {
         let border: Vec<(u32, u32, u32)> = border_edges(triangles)
             .into_iter()
+            .chain(cycles.iter().copied())
             .map(|(a, b)| (a, b, comp[a as usize]))
             .collect();
         let mut a0 = vec![0.0; count];
@@ -148,7 +151,7 @@ mod tests {
             [square(1.0, Point::ZERO), square(1.0, Point::new(5.0, 0.0))].concat();
         let tgt: Vec<Point> =
             [square(3.0, Point::ZERO), square(1.0, Point::new(5.0, 0.0))].concat();
-        let rule = AreaRule::new(&tris, &comp, 2, &src, &tgt);
+        let rule = AreaRule::new(&tris, &[], &comp, 2, &src, &tgt);
         // A frame at t = ½ where part 0 is 1.5 × 3 (area 4.5, a swell over the similarity's
         // 2 × 2) and part 1 is unchanged (area 1, as wanted).
         let mut frame: Vec<Point> = [
@@ -211,7 +214,7 @@ mod tests {
     #[test]
     fn parts_without_area_are_left_alone() {
         let pts = vec![Point::ZERO, Point::new(1.0, 0.0), Point::new(2.0, 0.0)];
-        let rule = AreaRule::new(&[[0, 1, 2]], &[0, 0, 0], 1, &pts, &pts);
+        let rule = AreaRule::new(&[[0, 1, 2]], &[], &[0, 0, 0], 1, &pts, &pts);
         let mut frame = pts.clone();
         rule.apply(
             0.5,

@@ -291,18 +291,21 @@ impl DiscRigid {
 
     /// [`DiscRigid::new`] on a triangle mesh (`discs` its one-rings) with the area rule
     /// (`area.rs`): every connected part's area — that of `triangles`, all of the mesh's or a
-    /// region of them — follows the similarity curve between its end areas instead of swelling
-    /// where it stretches unevenly.
+    /// region of them, and of the closed outlines without a mesh whose directed edges are
+    /// `cycles` — follows the similarity curve between its end areas instead of swelling or
+    /// shrinking where it stretches unevenly.
     pub(crate) fn with_area_rule(
         source: &[Point],
         target: &[Point],
         discs: &[Vec<u32>],
         triangles: &[[u32; 3]],
+        cycles: &[(u32, u32)],
     ) -> Result<Self> {
         let mut d = Self::new(source, target, discs)?;
         let count = d.system.component_count();
         d.area = Some(AreaRule::new(
             triangles,
+            cycles,
             d.system.components(),
             count,
             source,
@@ -391,7 +394,8 @@ impl DiscRigid {
     }
 
     /// Makes the connected parts whose vertices are flagged in `together` (a flag per point;
-    /// a part belongs when its first point is flagged) move as one figure ([`PartGroup`]):
+    /// a part belongs when its first point is flagged and it is not the same at both ends)
+    /// move as one figure ([`PartGroup`]):
     /// their centroids follow the barycenter mesh's rigid interpolation and their rotations
     /// the barycenter mesh's branch. Frames t = 0 and 1 stay exact: the barycenter mesh
     /// reproduces its ends, and a 2π shift does not change an end.
@@ -402,16 +406,33 @@ impl DiscRigid {
         for (v, &c) in comp.iter().enumerate() {
             first[c as usize].get_or_insert(v);
         }
+        // A part that is the same at both ends (a badge's background under a changing glyph)
+        // stands still rather than riding the figure's motion.
+        let mut moves = vec![false; count];
+        for (e, &al) in self.terms.iter().zip(&self.alpha) {
+            if al != 0.0 || e.s1 != 0.0 {
+                moves[comp[e.vi as usize] as usize] = true;
+            }
+        }
+        for (c, m) in moves.iter_mut().enumerate() {
+            *m |= self.centroid_source[c] != self.centroid_target[c];
+        }
         let members: Vec<u32> = (0..count as u32)
-            .filter(|&c| first[c as usize].is_some_and(|v| together.get(v) == Some(&true)))
+            .filter(|&c| {
+                moves[c as usize]
+                    && first[c as usize].is_some_and(|v| together.get(v) == Some(&true))
+            })
             .collect();
         if members.len() < 2 {
             return;
         }
-        let pick = |cs: &[Point]| -> Vec<Point> { members.iter().map(|&c| cs[c as usize]).collect() };
+        let pick =
+            |cs: &[Point]| -> Vec<Point> { members.iter().map(|&c| cs[c as usize]).collect() };
         let (a, b) = (pick(&self.centroid_source), pick(&self.centroid_target));
         let k = members.len() as u32;
-        let discs: Vec<Vec<u32>> = (0..k).map(|i| (0..k).filter(|&j| j != i).collect()).collect();
+        let discs: Vec<Vec<u32>> = (0..k)
+            .map(|i| (0..k).filter(|&j| j != i).collect())
+            .collect();
         // Coincident centroids (concentric rings) give no layout to keep.
         let barycenters = DiscRigid::new(&a, &b, &discs).ok().map(Box::new);
         if let Some(bm) = &barycenters {
@@ -429,8 +450,16 @@ impl DiscRigid {
                     if n == 0 || !members.contains(&(c as u32)) {
                         return 0.0;
                     }
+                    // Only a part whose own turn is near a half turn either way takes the
+                    // figure's branch; a part turning a quarter turn keeps the short way.
                     let tau = std::f64::consts::TAU;
-                    ((turn - s / n as f64) / tau).round() * tau
+                    let mean = s / n as f64;
+                    let k = ((turn - mean) / tau).round();
+                    if (mean + k * tau).abs() <= 1.25 * std::f64::consts::PI {
+                        k * tau
+                    } else {
+                        0.0
+                    }
                 })
                 .collect();
             for (e, al) in self.terms.iter().zip(self.alpha.iter_mut()) {
@@ -459,7 +488,10 @@ impl DiscRigid {
     pub(crate) fn scratch(&self) -> FrameScratch {
         let mut s = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
         if let Some(bm) = self.group.as_ref().and_then(|g| g.barycenters.as_ref()) {
-            s.group = Some(Box::new((bm.scratch(), vec![Point::ZERO; bm.vertex_count()])));
+            s.group = Some(Box::new((
+                bm.scratch(),
+                vec![Point::ZERO; bm.vertex_count()],
+            )));
         }
         s
     }

@@ -165,6 +165,22 @@ impl Interpolator {
         let region = setup.area_region.unwrap_or(setup.triangles);
         check_triangles(region, n)?;
         let mut rings = crate::mesh::one_rings(setup.triangles, n);
+        // Closed chains are outlines without a mesh: the area rule measures them too, wound
+        // counter-clockwise in the source.
+        let mut cycles: Vec<(u32, u32)> = Vec::new();
+        for chain in setup.chains.iter().filter(|c| c.closed) {
+            let pts: Vec<Point> = chain
+                .vertices
+                .iter()
+                .filter_map(|&v| source.get(v as usize).copied())
+                .collect();
+            let forward = crate::geometry::polygon_area(&pts) >= 0.0;
+            let k = chain.vertices.len();
+            for i in 0..k {
+                let (a, b) = (chain.vertices[i], chain.vertices[(i + 1) % k]);
+                cycles.push(if forward { (a, b) } else { (b, a) });
+            }
+        }
         for chain in setup.chains {
             let k = chain.vertices.len();
             let links = if chain.closed { k } else { k.saturating_sub(1) };
@@ -179,7 +195,7 @@ impl Interpolator {
                 rings[b as usize].push(a);
             }
         }
-        let mut d = DiscRigid::with_area_rule(source, target, &rings, region)?;
+        let mut d = DiscRigid::with_area_rule(source, target, &rings, region, &cycles)?;
         if let Some(together) = setup.together {
             d.group_parts(together);
         }

@@ -86,8 +86,13 @@ impl SkeletonControl {
     pub fn new(meshes: &CompatibleMeshes, skeleton: Skeleton, poses: &[Pose]) -> Result<Self> {
         let n = meshes.source.len();
         let rings = crate::mesh::one_rings(&meshes.triangles, n);
-        let plain =
-            DiscRigid::with_area_rule(&meshes.source, &meshes.target, &rings, &meshes.triangles)?;
+        let plain = DiscRigid::with_area_rule(
+            &meshes.source,
+            &meshes.target,
+            &rings,
+            &meshes.triangles,
+            &[],
+        )?;
         let locator = PointLocator::new(&meshes.source, &meshes.triangles)?;
         let joints: Vec<Location> = skeleton.joints.iter().map(|&j| locator.locate(j)).collect();
         let mut this = SkeletonControl {

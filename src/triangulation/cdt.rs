@@ -17,7 +17,7 @@ use std::collections::BTreeSet;
 
 /// Why the CDT could not be built.
 #[derive(Debug)]
-pub(crate) enum CdtError {
+pub(super) enum CdtError {
     /// A constraint edge of this curve crosses (or runs through a vertex of) another curve.
     Crossing(usize),
     /// A vertex of this curve has a coordinate spade cannot represent.
@@ -173,7 +173,10 @@ pub(super) fn build(
 /// Which faces are inside the boundary whose (counter-clockwise) edges are `boundary_edges`:
 /// a flood fill from the faces left of them that never crosses a boundary edge (feature edges
 /// are crossed freely).
-fn inside_faces(cdt: &Cdt, boundary_edges: &BTreeSet<(usize, usize)>) -> Result<Vec<bool>, CdtError> {
+fn inside_faces(
+    cdt: &Cdt,
+    boundary_edges: &BTreeSet<(usize, usize)>,
+) -> Result<Vec<bool>, CdtError> {
     let mut inside = vec![false; cdt.num_all_faces()];
     let mut stack = Vec::new();
     for &(a, b) in boundary_edges {
@@ -206,171 +209,6 @@ fn inside_faces(cdt: &Cdt, boundary_edges: &BTreeSet<(usize, usize)>) -> Result<
     }
 
     Ok(inside)
-}
-
-/// A triangulation of the simple counter-clockwise polygon `points` with no Steiner point: the
-/// constrained Delaunay triangulation of its corners with its edges as constraints, and also
-/// every diagonal of `wanted` that lies inside it and crosses no edge kept so far (taken in
-/// order). Returns the triangles (counter-clockwise, vertex indices of `points`) and the
-/// diagonals of `wanted` that were kept.
-///
-/// Vertices on a straight run of the outline (within `1e-10` of the run's length from the line
-/// through their corners — densified edges, vertices the correspondence inserted) are left out
-/// of the Delaunay triangulation and fanned in afterwards, each triangle on the run split at
-/// them: a run bulging inwards by a rounding error would otherwise give slivers of zero area
-/// in floating point.
-pub(crate) fn polygon(
-    points: &[Point],
-    wanted: &[(u32, u32)],
-) -> Result<(Vec<[u32; 3]>, Vec<(u32, u32)>), CdtError> {
-    let n = points.len();
-    if n < 3 {
-        return Err(CdtError::Other("polygon: fewer than 3 vertices".into()));
-    }
-    // Corners: the vertices that are not on a straight run between their neighbouring corners.
-    let mut corner = vec![true; n];
-    loop {
-        let mut changed = false;
-        let kept: Vec<usize> = (0..n).filter(|&k| corner[k]).collect();
-        if kept.len() <= 3 {
-            break;
-        }
-        for w in 0..kept.len() {
-            let (a, k, b) = (
-                kept[(w + kept.len() - 1) % kept.len()],
-                kept[w],
-                kept[(w + 1) % kept.len()],
-            );
-            if !corner[a] || !corner[b] {
-                continue;
-            }
-            let span = points[b] - points[a];
-            let off = span.perp_dot(points[k] - points[a]).abs();
-            let along = (points[k] - points[a]).dot(span);
-            if off <= 1e-10 * span.length_squared() && along > 0.0 && along < span.length_squared()
-            {
-                corner[k] = false;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    let kept: Vec<usize> = (0..n).filter(|&k| corner[k]).collect();
-    let index_of: Vec<Option<usize>> = {
-        let mut v = vec![None; n];
-        for (i, &k) in kept.iter().enumerate() {
-            v[k] = Some(i);
-        }
-        v
-    };
-    let m = kept.len();
-    let mut cdt = Cdt::new();
-    for (i, &k) in kept.iter().enumerate() {
-        let p = points[k];
-        let h = cdt
-            .insert(Point2::new(p.x, p.y))
-            .map_err(|_| CdtError::Coordinate(0))?;
-        if h.index() != i {
-            return Err(CdtError::Other("polygon: vertex merged with another".into()));
-        }
-    }
-    let mut boundary_edges = BTreeSet::new();
-    for i in 0..m {
-        let (a, b) = (
-            FixedVertexHandle::from_index(i),
-            FixedVertexHandle::from_index((i + 1) % m),
-        );
-        if !cdt.can_add_constraint(a, b) || cdt.try_add_constraint(a, b).len() != 1 {
-            return Err(CdtError::Crossing(0));
-        }
-        boundary_edges.insert((i, (i + 1) % m));
-    }
-    let mut kept_wanted = Vec::new();
-    for &(i, j) in wanted {
-        let (a, b) = (i as usize, j as usize);
-        let (Some(Some(ia)), Some(Some(ib))) = (index_of.get(a), index_of.get(b)) else {
-            continue;
-        };
-        let (ia, ib) = (*ia, *ib);
-        if ia == ib || (ia + 1) % m == ib || (ib + 1) % m == ia {
-            continue;
-        }
-        let (ha, hb) = (FixedVertexHandle::from_index(ia), FixedVertexHandle::from_index(ib));
-        let mid = (points[a] + points[b]) * 0.5;
-        if cdt.exists_constraint(ha, hb)
-            || !crate::geometry::point_in_polygon(mid, points)
-            || !cdt.can_add_constraint(ha, hb)
-        {
-            continue;
-        }
-        if cdt.try_add_constraint(ha, hb).len() == 1 {
-            kept_wanted.push((i, j));
-        }
-    }
-    let inside = inside_faces(&cdt, &boundary_edges)?;
-    let mut triangles = Vec::new();
-    for f in cdt.fixed_inner_faces() {
-        if !inside[f.index()] {
-            continue;
-        }
-        let mut t = cdt.face(f).vertices().map(|v| kept[v.fix().index()] as u32);
-        let o = orient2d(points[t[0] as usize], points[t[1] as usize], points[t[2] as usize]);
-        if o == 0.0 {
-            return Err(CdtError::Other("polygon: degenerate triangle".into()));
-        }
-        if o < 0.0 {
-            t.swap(1, 2);
-        }
-        triangles.push(t);
-    }
-    // Fan the straight-run vertices in: a side (a, b) of the corner polygon that runs over
-    // left-out vertices a+1 … b−1 splits its triangle at each of them.
-    let mut again = true;
-    while again {
-        again = false;
-        let mut next = Vec::with_capacity(triangles.len());
-        for t in triangles {
-            let mut split = None;
-            for r in 0..3 {
-                let (a, b) = (t[r] as usize, t[(r + 1) % 3] as usize);
-                if (a + 1) % n != b && index_of[(a + 1) % n].is_none() {
-                    let mut k = (a + 1) % n;
-                    let mut ok = true;
-                    while k != b {
-                        if index_of[k].is_some() {
-                            ok = false;
-                            break;
-                        }
-                        k = (k + 1) % n;
-                    }
-                    if ok {
-                        split = Some(r);
-                        break;
-                    }
-                }
-            }
-            match split {
-                None => next.push(t),
-                Some(r) => {
-                    again = true;
-                    let (a, b, c) = (t[r], t[(r + 1) % 3], t[(r + 2) % 3]);
-                    let k = ((a as usize + 1) % n) as u32;
-                    next.push([a, k, c]);
-                    next.push([k, b, c]);
-                }
-            }
-        }
-        triangles = next;
-    }
-    if triangles.len() + 2 != n {
-        return Err(CdtError::Other(format!(
-            "polygon: {} triangles for {n} vertices",
-            triangles.len()
-        )));
-    }
-    Ok((triangles, kept_wanted))
 }
 
 /// Inserts the midpoint of every chord (an edge between two curve vertices, the first

@@ -7,7 +7,7 @@
 //! vertex corresponds one to one with its target twin), and the faces inside the boundary are
 //! kept — including those inside closed feature curves.
 
-pub(crate) mod cdt;
+mod cdt;
 pub(crate) mod validate;
 
 use crate::correspondence::CurvePair;
