@@ -1,7 +1,8 @@
 //! Spin of automatic mode's middle frames (issue #7, item 7): for every pair of shapes that
 //! morph with an outline, how far the outline's turn at t = ½ is from half the shapes' own
-//! turn (`crmorph::quality::spin`). Over the icon fixtures and, when given, a corpus
-//! (`pairs.json` as `tools/corpus` draws it). Run:
+//! turn (`crmorph::quality::spin`); and which rung of the ladder the pairs of shapes took.
+//! Over the icon fixtures and, when given, a corpus (`pairs.json` as `tools/corpus` draws it).
+//! Run:
 //! `cargo run --release --example spin [-- tools/corpus/.cache/corpus]`.
 
 use std::path::{Path, PathBuf};
@@ -41,6 +42,8 @@ fn pairs(corpus: Option<&Path>) -> Vec<(String, PathBuf, PathBuf)> {
 fn main() {
     let corpus = std::env::args().nth(1).map(PathBuf::from);
     let mut spins: Vec<(f64, String)> = Vec::new();
+    let mut rungs: std::collections::BTreeMap<String, usize> = Default::default();
+    let (mut lone, mut blended) = (0usize, 0usize);
     for (name, s, t) in pairs(corpus.as_deref()) {
         let o = ReadOptions::default();
         let (Ok(ds), Ok(dt)) = (Drawing::open(&s, &o), Drawing::open(&t, &o)) else {
@@ -48,9 +51,25 @@ fn main() {
         };
         let scene = |d: &Drawing| Scene::from_svg(&d.file, &d.svg, "controls").unwrap();
         let (ss, ts) = (scene(&ds), scene(&dt));
-        let Ok((c, _, _, _)) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default()) else {
+        let Ok((c, report, _, _)) = build_auto(&ds, &dt, &ss, &ts, &MorphOptions::default()) else {
             continue;
         };
+        for s in &report.shapes {
+            let rung = match s.rung {
+                crmorph::auto::part::Rung::Mapped {
+                    from_target,
+                    features,
+                } => format!(
+                    "composite harmonic mapping{}{}",
+                    if from_target { " from the target" } else { "" },
+                    if features > 0 { ", holes aligned" } else { "" }
+                ),
+                other => other.to_string(),
+            };
+            *rungs.entry(rung).or_default() += 1;
+        }
+        lone += report.lone.len();
+        blended += report.blended;
         let interp = c.interpolator(Method::Disc).unwrap();
         let mid = interp.at_vec(0.5);
         let m = &c.meshes;
@@ -65,6 +84,11 @@ fn main() {
             spins.push((spin.to_degrees(), format!("{name} {}", curve.name)));
         }
     }
+    println!("pairs of shapes by rung:");
+    for (rung, n) in &rungs {
+        println!("  {n:5}  {rung}");
+    }
+    println!("shapes without a partner: {lone}; paths cross-fading: {blended}");
     spins.sort_by(|a, b| a.0.total_cmp(&b.0));
     let n = spins.len();
     let q = |f: f64| spins[((n as f64 - 1.0) * f).round() as usize].0;

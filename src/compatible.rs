@@ -77,6 +77,24 @@ impl Compatible {
             }
             flags
         });
+        // Fold repair on the parts that need it, curve vertices held.
+        let repaired: Vec<[u32; 3]> = m
+            .parts
+            .iter()
+            .flat_map(|p| {
+                m.triangles
+                    .iter()
+                    .zip(&p.of_triangle)
+                    .filter(|(_, k)| p.repair.contains(k))
+                    .map(|(t, _)| *t)
+            })
+            .collect();
+        let mut on_curve = vec![false; m.source.len()];
+        for &v in m.curves.iter().flat_map(|c| &c.vertices) {
+            if let Some(f) = on_curve.get_mut(v as usize) {
+                *f = true;
+            }
+        }
         Interpolator::disc(
             &m.source,
             &m.target,
@@ -85,6 +103,7 @@ impl Compatible {
                 chains: &chains,
                 area_region: self.area_region.as_deref(),
                 together: together.as_deref(),
+                repair: (!repaired.is_empty()).then_some((&repaired[..], &on_curve[..])),
             },
         )
     }

@@ -63,6 +63,9 @@ pub struct Parts {
     /// Indices into the meshes' curves of curves with no triangles (a stroke's centre line,
     /// an outline morphed without an interior mesh): they move as chains of disc neighbours.
     pub chains: Vec<usize>,
+    /// The parts whose frames need the fold repair of the disc interpolation (their meshes
+    /// fold a few triangles in between otherwise).
+    pub repair: Vec<u32>,
 }
 
 /// Counts found by [`sanity_check`]; a healthy pair of meshes has every count zero.

@@ -342,7 +342,7 @@ impl Binding {
     }
 
     /// [`Binding::new`] on a mesh made of `parts` (automatic mode): each item is bound to one
-    /// part (see [`Locator`]).
+    /// part (the shape holding most of its points, else the still part).
     pub fn with_parts(
         scene: &Scene,
         mesh_vertices: &[Point],

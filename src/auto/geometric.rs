@@ -711,7 +711,12 @@ pub(crate) fn morphing_paths(
 /// Whether two paths paint the same (fill and stroke), so that a shape of one may be drawn
 /// with the other.
 fn same_paint(a: &PathItem, b: &PathItem) -> bool {
-    a.fill == b.fill && a.stroke == b.stroke
+    // The fill rule is no part of the look of a morphing path (its rings are wound explicitly).
+    let fill = |x: &PathItem, y: &PathItem| match (&x.fill, &y.fill) {
+        (Some(f), Some(g)) => f.paint == g.paint && f.opacity == g.opacity,
+        (f, g) => f.is_none() && g.is_none(),
+    };
+    fill(a, b) && a.stroke == b.stroke
 }
 
 /// Whether two paths' paints can interpolate: fill with fill and stroke with stroke, each pair

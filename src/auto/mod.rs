@@ -14,7 +14,7 @@
 //!    paired holes are feature curves — climbing a ladder from the paper's compatible
 //!    triangulation (§5) down to one that always exists, so a pair always morphs as one shape.
 //!    A pair of strokes moves as a chain of discs along its centre line.
-//! 4. [`union`](mod@union): the shapes' meshes become one pair of meshes with
+//! 4. `union`: the shapes' meshes become one pair of meshes with
 //!    [`crate::mesh::Parts`], plus a still frame that artwork outside every shape is bound to.
 //!    The disc-based rigid interpolation moves the shapes as one figure (their centroids along
 //!    the barycenter mesh's rigid path, §5 Fig. 9, and their turns on one branch).
@@ -37,6 +37,9 @@ use crate::geometry::Point;
 use contours::{contours, Contour, ContourKind};
 use part::{build_part, PartInputs, PartMesh, PartPlan, Rung};
 use rayon::prelude::*;
+
+/// Shape pairs the report names before it counts the rest.
+const SHOWN: usize = 6;
 
 /// Padding of the still frame around the two view boxes, as a fraction of their larger side.
 const PADDING: f64 = 0.05;
@@ -78,6 +81,10 @@ pub struct AutoReport {
     pub lone: Vec<LoneReport>,
     /// Artwork paths that morph as one shape ([`geometric`]).
     pub morphing: Vec<geometric::MorphingPath>,
+    /// Paths (source and target) with a paired shape that still cross-fade: their paint does
+    /// not interpolate, they are not plain paths (a group with opacity or a clip, a dashed
+    /// stroke), or their paint order differs between the drawings.
+    pub blended: usize,
 }
 
 impl std::fmt::Display for AutoReport {
@@ -90,32 +97,51 @@ impl std::fmt::Display for AutoReport {
             self.shapes.len(),
             if self.shapes.len() == 1 { "" } else { "s" }
         )?;
-        for (k, s) in self.shapes.iter().enumerate() {
+        // One line however many shapes: the first few pairs by name, then a count.
+        for (k, s) in self.shapes.iter().take(SHOWN).enumerate() {
             let sep = if k == 0 { " (" } else { "; " };
             write!(f, "{sep}{} → {}: {}", s.source, s.target, s.rung)?;
+        }
+        if self.shapes.len() > SHOWN {
+            write!(f, "; {} more", self.shapes.len() - SHOWN)?;
         }
         if !self.shapes.is_empty() {
             f.write_str(")")?;
         }
+        // Shapes without a partner, grouped by what they do and where.
+        let mut groups: Vec<(bool, Option<&String>, Vec<&String>)> = Vec::new();
         for l in &self.lone {
-            let verb = if l.shrinks {
-                "shrinks into"
-            } else {
-                "grows out of"
-            };
-            match &l.host {
-                Some(h) => write!(f, "; {} {verb} {h}", l.shape)?,
-                None => write!(
-                    f,
-                    "; {} {} in place",
-                    l.shape,
-                    if l.shrinks { "shrinks" } else { "grows" }
-                )?,
+            match groups
+                .iter_mut()
+                .find(|g| g.0 == l.shrinks && g.1 == l.host.as_ref())
+            {
+                Some(g) => g.2.push(&l.shape),
+                None => groups.push((l.shrinks, l.host.as_ref(), vec![&l.shape])),
             }
         }
-        let blended = self.morphing.is_empty() && !self.shapes.is_empty();
-        if blended {
-            f.write_str("; its paths cannot morph as shapes and are blended")?;
+        for (shrinks, host, shapes) in groups {
+            let one = shapes.len() == 1;
+            let who = if one {
+                shapes[0].clone()
+            } else {
+                format!("{} shapes", shapes.len())
+            };
+            let verb = match (shrinks, one) {
+                (true, true) => "shrinks",
+                (true, false) => "shrink",
+                (false, true) => "grows",
+                (false, false) => "grow",
+            };
+            match host {
+                Some(h) if shrinks => write!(f, "; {who} {verb} into {h}")?,
+                Some(h) => write!(f, "; {who} {verb} out of {h}")?,
+                None => write!(f, "; {who} {verb} in place")?,
+            }
+        }
+        match self.blended {
+            0 => {}
+            1 => f.write_str("; 1 path cross-fades")?,
+            n => write!(f, "; {n} paths cross-fade")?,
         }
         Ok(())
     }
@@ -244,6 +270,27 @@ pub fn build_auto(
     };
     let morphing =
         geometric::morphing_paths(source_scene, target_scene, &cs, &ct, &matched, &meshes);
+    // Paths with a paired shape that no morphing path draws: they cross-fade.
+    let blended = {
+        let drawn = |source: bool, item: usize| {
+            morphing.iter().any(|p| {
+                let (mine, covers) = if source {
+                    (p.source_item, &p.covers.0)
+                } else {
+                    (p.target_item, &p.covers.1)
+                };
+                mine == Some(item) || covers.contains(&item)
+            })
+        };
+        let mut s: Vec<usize> = matched.plans.iter().map(|p| cs[p.source].path).collect();
+        let mut t: Vec<usize> = matched.plans.iter().map(|p| ct[p.target].path).collect();
+        s.sort_unstable();
+        s.dedup();
+        t.sort_unstable();
+        t.dedup();
+        s.iter().filter(|&&i| !drawn(true, i)).count()
+            + t.iter().filter(|&&j| !drawn(false, j)).count()
+    };
     let name_s = |c: usize| shape_name(source_scene, &cs, c);
     let name_t = |c: usize| shape_name(target_scene, &ct, c);
     let report = AutoReport {
@@ -279,6 +326,7 @@ pub fn build_auto(
             })
             .collect(),
         morphing,
+        blended,
     };
     let c = Compatible {
         meshes,
@@ -443,3 +491,6 @@ pub(crate) fn shape_name(scene: &Scene, contours: &[Contour], c: usize) -> Strin
         format!("'{}'", crate::error::printable(&id))
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -96,6 +96,8 @@ pub(crate) struct PartMesh {
     pub(crate) rung: Rung,
     /// Matched holes aligned as features, with their curve index in `meshes.curves`.
     pub(crate) features: Vec<((usize, usize), usize)>,
+    /// Whether its frames need the disc interpolation's fold repair (`rigid::repair`).
+    pub(crate) repair: bool,
 }
 
 /// What a part's problem is built from: the two drawings (for file names and settings), the
@@ -277,8 +279,8 @@ pub(crate) fn build_part(
         for from_target in [false, true] {
             let mut o = inputs.opts.clone();
             o.from_target = from_target;
-            match build(&s, &t, &o).and_then(|c| moves_without_folding(&c).map(|_| c)) {
-                Ok(c) => {
+            match build(&s, &t, &o).and_then(|c| moves_without_folding(&c).map(|r| (c, r))) {
+                Ok((c, repair)) => {
                     let features = holes
                         .iter()
                         .enumerate()
@@ -299,6 +301,7 @@ pub(crate) fn build_part(
                         features,
                         pairs: c.pairs,
                         meshes: c.meshes,
+                        repair,
                     });
                 }
                 Err(e) => {
@@ -383,12 +386,13 @@ pub(crate) fn build_part(
                 c.meshes.source.len()
             );
         }
-        if r.is_ok() {
+        if let Ok(repair) = r {
             return Ok(PartMesh {
                 meshes: c.meshes,
                 pairs: c.pairs,
                 rung: Rung::Overlay,
                 features: Vec::new(),
+                repair,
             });
         }
     }
@@ -410,28 +414,54 @@ pub(crate) fn build_part(
         pairs: vec![outline],
         rung: if stroke { Rung::Stroke } else { Rung::Outline },
         features: Vec::new(),
+        repair: false,
     })
 }
 
 /// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/16
-/// (k = 1…15): a mesh whose frames fold is no better than a failed mapping.
-fn moves_without_folding(c: &Compatible) -> Result<()> {
+/// (k = 1…15), and with the fold repair of `rigid::repair` when the plain frames fold a few, at
+/// t = k/64 (repaired folds come and go between samples): a mesh whose frames fold even so is
+/// no better than a failed mapping. Returns whether the repair is needed.
+fn moves_without_folding(c: &Compatible) -> Result<bool> {
     let m = &c.meshes;
-    let interp = crate::rigid::Interpolator::new(
+    let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
+    let folds = |interp: &crate::rigid::Interpolator, ts: &[f64]| -> Option<(f64, usize)> {
+        ts.iter()
+            .zip(interp.frames(ts))
+            .map(|(&t, f)| (t, crate::mesh::count_inverted(&m.triangles, &f)))
+            .find(|&(_, n)| n > 0)
+    };
+    let plain = crate::rigid::Interpolator::new(
         crate::rigid::Method::Disc,
         &m.source,
         &m.target,
         &m.triangles,
     )?;
-    let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
-    for (t, f) in ts.iter().zip(interp.frames(&ts)) {
-        let folded = crate::mesh::count_inverted(&m.triangles, &f);
-        if folded > 0 {
-            return Err(Error::input(
-                "<auto>",
-                format!("the rigid interpolation folds {folded} triangles at t = {t}"),
-            ));
-        }
+    let Some((t, folded)) = folds(&plain, &ts) else {
+        return Ok(false);
+    };
+    let mut on_curve = vec![false; m.source.len()];
+    for &v in m.curves.iter().flat_map(|c| &c.vertices) {
+        on_curve[v as usize] = true;
     }
-    Ok(())
+    let repaired = crate::rigid::Interpolator::disc(
+        &m.source,
+        &m.target,
+        &crate::rigid::DiscSetup {
+            triangles: &m.triangles,
+            repair: Some((&m.triangles, &on_curve)),
+            ..Default::default()
+        },
+    )?;
+    let fine: Vec<f64> = (1..64).map(|i| i as f64 / 64.0).collect();
+    match folds(&repaired, &fine) {
+        None => Ok(true),
+        Some((t2, left)) => Err(Error::input(
+            "<auto>",
+            format!(
+                "the rigid interpolation folds {folded} triangles at t = {t} ({left} at t = {t2} \
+                 after repair)"
+            ),
+        )),
+    }
 }

@@ -91,6 +91,12 @@ pub(crate) fn union(
         count: still + 1,
         still: Some(still),
         chains,
+        repair: parts
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.repair)
+            .map(|(k, _)| k as u32)
+            .collect(),
     });
     (m, pairs, placed)
 }

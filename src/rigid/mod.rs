@@ -20,6 +20,7 @@ mod area;
 mod assembly;
 mod disc;
 mod linear;
+mod repair;
 mod rotation;
 mod sincos;
 mod triangle;
@@ -54,6 +55,10 @@ pub struct DiscSetup<'a> {
     /// (centroids on the barycenter mesh's rigid path, rotations on its branch; automatic
     /// mode's shapes of one icon). Default: every part on its own straight centroid line.
     pub together: Option<&'a [bool]>,
+    /// Fold repair after each solve (a deviation from the paper, `repair.rs`): the triangles
+    /// to keep unfolded, and a flag per point for those that must not move (curve vertices).
+    /// Default: none.
+    pub repair: Option<(&'a [[u32; 3]], &'a [bool])>,
 }
 
 /// Which interpolation to use (CLI: `--method disc|triangle|linear`).
@@ -198,6 +203,10 @@ impl Interpolator {
         let mut d = DiscRigid::with_area_rule(source, target, &rings, region, &cycles)?;
         if let Some(together) = setup.together {
             d.group_parts(together);
+        }
+        if let Some((triangles, fixed)) = setup.repair {
+            check_triangles(triangles, n)?;
+            d.repair = Some(Box::new(repair::FoldRepair::new(triangles, n, fixed)));
         }
         Ok(Interpolator {
             kind: Kind::Disc(d),

@@ -134,7 +134,7 @@ function runCrmorph(pair, o) {
 let flubber = null;
 
 /**
- * flubber interpolators for the rings of the two icons, paired in document order (as tools/compare):
+ * flubber interpolators for the rings of the two icons, paired in document order:
  *   n = m       interpolateAll(S, T)            (n = m = 1: interpolate)
  *   n = 1 < m   separate(S0, T)
  *   n > 1 = m   combine(S, T0)
