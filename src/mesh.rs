@@ -180,6 +180,26 @@ pub fn edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
     e
 }
 
+/// Whether triangle `t` is strictly counter-clockwise in `points` (exact predicate).
+pub(crate) fn is_positive(points: &[Point], t: [u32; 3]) -> bool {
+    orient2d(
+        points[t[0] as usize],
+        points[t[1] as usize],
+        points[t[2] as usize],
+    ) > 0.0
+}
+
+/// The triangles around each of `vertex_count` vertices (indices into `triangles`).
+pub(crate) fn stars(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
+    let mut star = vec![Vec::new(); vertex_count];
+    for (f, t) in triangles.iter().enumerate() {
+        for &v in t {
+            star[v as usize].push(f as u32);
+        }
+    }
+    star
+}
+
 /// One-ring neighbour lists (the "discs" of §4.1 for a triangulation), each sorted ascending.
 pub fn one_rings(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
     let mut rings = vec![Vec::new(); vertex_count];

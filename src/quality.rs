@@ -101,7 +101,7 @@ const TURN_SAMPLES: usize = 64;
 
 /// `n` points evenly spaced by arc length along the closed polyline `ring`, from its first
 /// vertex.
-fn ring_samples(ring: &[Point], n: usize) -> Vec<Point> {
+pub(crate) fn ring_samples(ring: &[Point], n: usize) -> Vec<Point> {
     let m = ring.len();
     if m == 0 {
         return Vec::new();

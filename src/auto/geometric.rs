@@ -420,28 +420,7 @@ fn plain_paths(scene: &Scene) -> Vec<Option<PathItem>> {
 /// the correspondence of a paired hole that is not a feature curve.
 fn paired_rings(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>) {
     let n = a.len().max(b.len()).clamp(8, 512);
-    let resample = |r: &[Point]| -> Vec<Point> {
-        let r = oriented(r.to_vec(), false);
-        let m = r.len();
-        let lens: Vec<f64> = (0..m).map(|i| r[i].distance(r[(i + 1) % m])).collect();
-        let total: f64 = lens.iter().sum();
-        let mut out = Vec::with_capacity(n);
-        let (mut i, mut acc) = (0usize, 0.0);
-        for k in 0..n {
-            let s = total * k as f64 / n as f64;
-            while i + 1 < m && acc + lens[i] < s {
-                acc += lens[i];
-                i += 1;
-            }
-            let u = if lens[i] > 0.0 {
-                ((s - acc) / lens[i]).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            out.push(r[i] + (r[(i + 1) % m] - r[i]) * u);
-        }
-        out
-    };
+    let resample = |r: &[Point]| crate::quality::ring_samples(&oriented(r.to_vec(), false), n);
     let (ra, rb) = (resample(a), resample(b));
     let (ca, cb) = (
         crate::geometry::centroid(&ra),

@@ -147,17 +147,7 @@ impl Harmonic {
         let Some(symbolic) = self.symbolic.clone() else {
             return Ok(());
         };
-        self.weights.fill(0.0);
-        for (t, opp) in self.triangles.iter().zip(&self.opposite) {
-            let p = t.map(|v| metric[v as usize]);
-            let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
-            for k in 0..3 {
-                let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-                if opp[k] != NONE {
-                    self.weights[opp[k] as usize] += 0.5 * a.dot(b) / twice_area;
-                }
-            }
-        }
+        self.cotangent_weights(metric);
         if self.weights.iter().any(|w| !w.is_finite()) {
             return Err(Error::internal(
                 "harmonic map: degenerate triangle in the metric",
@@ -188,17 +178,7 @@ impl Harmonic {
         let Some(symbolic) = self.symbolic.clone() else {
             return Ok(());
         };
-        self.weights.fill(0.0);
-        for (t, opp) in self.triangles.iter().zip(&self.opposite) {
-            let p = t.map(|v| metric[v as usize]);
-            let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
-            for k in 0..3 {
-                let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-                if opp[k] != NONE {
-                    self.weights[opp[k] as usize] += 0.5 * a.dot(b) / twice_area;
-                }
-            }
-        }
+        self.cotangent_weights(metric);
         let mean = self
             .weights
             .iter()
@@ -216,6 +196,21 @@ impl Harmonic {
             .factor(&symbolic, Some(floor))
             .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?;
         self.finish(&llt, out)
+    }
+
+    /// The cotangent weight of every edge in the metric `metric`, into `self.weights`.
+    fn cotangent_weights(&mut self, metric: &[Point]) {
+        self.weights.fill(0.0);
+        for (t, opp) in self.triangles.iter().zip(&self.opposite) {
+            let p = t.map(|v| metric[v as usize]);
+            let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
+            for k in 0..3 {
+                let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+                if opp[k] != NONE {
+                    self.weights[opp[k] as usize] += 0.5 * a.dot(b) / twice_area;
+                }
+            }
+        }
     }
 
     /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored

@@ -15,7 +15,7 @@
 //! 3. *smoothing*: each free vertex moves, in each mesh on its own, towards the mean of its
 //!    neighbours, as far as its star stays valid (the move is halved until it is).
 
-use crate::geometry::{orient2d, Point};
+use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::tolerance::Tolerances;
 
@@ -61,13 +61,7 @@ fn min_angle(a: Point, b: Point, c: Point) -> f64 {
     }
 }
 
-fn positive(points: &[Point], t: [u32; 3]) -> bool {
-    orient2d(
-        points[t[0] as usize],
-        points[t[1] as usize],
-        points[t[2] as usize],
-    ) > 0.0
-}
+use crate::mesh::is_positive as positive;
 
 fn quality(m: &CompatibleMeshes, t: [u32; 3]) -> f64 {
     let q = |p: &[Point]| min_angle(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
@@ -235,70 +229,21 @@ fn split_long(m: &mut CompatibleMeshes, fixed: usize, max_edge: f64) -> usize {
     done
 }
 
-/// Straightens triangles that rounding left inverted or flat in either mesh: each of their free
-/// vertices (index ≥ `fixed`) moves, in the mesh where its star is not valid, to the mean of
-/// its neighbours or part of the way there, when that leaves fewer bad triangles in its star.
+/// Straightens triangles that rounding left inverted or flat in either mesh: the fold repair
+/// of the disc interpolation (`rigid::repair`) on each mesh, vertices `0..fixed` held.
 pub(crate) fn untangle(m: &mut CompatibleMeshes, fixed: usize) {
     let n = m.source.len();
-    let mut star: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for (f, t) in m.triangles.iter().enumerate() {
-        for &v in t {
-            star[v as usize].push(f);
-        }
-    }
-    let rings = crate::mesh::one_rings(&m.triangles, n);
-    let triangles = m.triangles.clone();
-    for points in [&mut m.source, &mut m.target] {
-        for _ in 0..8 {
-            let mut moved = false;
-            for f in 0..triangles.len() {
-                if positive(points, triangles[f]) {
-                    continue;
-                }
-                for &v in &triangles[f] {
-                    let v = v as usize;
-                    if v < fixed || rings[v].is_empty() {
-                        continue;
-                    }
-                    let bad = |pts: &[Point]| {
-                        star[v]
-                            .iter()
-                            .filter(|&&g| !positive(pts, triangles[g]))
-                            .count()
-                    };
-                    let before = bad(points);
-                    let mean = rings[v].iter().map(|&w| points[w as usize]).sum::<Point>()
-                        / rings[v].len() as f64;
-                    let old = points[v];
-                    let mut best = (before, old);
-                    for step in [1.0, 0.5, 0.25, 0.1, 0.01] {
-                        points[v] = old + (mean - old) * step;
-                        let now = bad(points);
-                        if now < best.0 {
-                            best = (now, points[v]);
-                        }
-                    }
-                    points[v] = best.1;
-                    moved |= best.0 < before;
-                }
-            }
-            if !moved {
-                break;
-            }
-        }
-    }
+    let held: Vec<bool> = (0..n).map(|v| v < fixed).collect();
+    let repair = crate::rigid::repair::FoldRepair::new(&m.triangles, n, &held);
+    repair.apply(&mut m.source);
+    repair.apply(&mut m.target);
 }
 
 /// Moves every free vertex (index ≥ `fixed`) towards the mean of its neighbours, in each mesh
 /// on its own, as far as its star stays valid.
 fn smooth(m: &mut CompatibleMeshes, fixed: usize) {
     let n = m.source.len();
-    let mut star: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for (f, t) in m.triangles.iter().enumerate() {
-        for &v in t {
-            star[v as usize].push(f);
-        }
-    }
+    let star = crate::mesh::stars(&m.triangles, n);
     let rings = crate::mesh::one_rings(&m.triangles, n);
     let triangles = m.triangles.clone();
     for points in [&mut m.source, &mut m.target] {
@@ -313,7 +258,10 @@ fn smooth(m: &mut CompatibleMeshes, fixed: usize) {
                 let mut step = 1.0;
                 for _ in 0..4 {
                     points[v] = old + (mean - old) * step;
-                    if star[v].iter().all(|&f| positive(points, triangles[f])) {
+                    if star[v]
+                        .iter()
+                        .all(|&f| positive(points, triangles[f as usize]))
+                    {
                         break;
                     }
                     step *= 0.5;

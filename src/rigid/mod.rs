@@ -20,7 +20,7 @@ mod area;
 mod assembly;
 mod disc;
 mod linear;
-mod repair;
+pub(crate) mod repair;
 mod rotation;
 mod sincos;
 mod triangle;

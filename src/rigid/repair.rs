@@ -32,23 +32,12 @@ pub(crate) struct FoldRepair {
     ring: Vec<Vec<u32>>,
 }
 
-fn positive(points: &[Point], t: [u32; 3]) -> bool {
-    orient2d(
-        points[t[0] as usize],
-        points[t[1] as usize],
-        points[t[2] as usize],
-    ) > 0.0
-}
+use crate::mesh::is_positive as positive;
 
 impl FoldRepair {
     /// The repair of `triangles` over `n` points, of which those flagged in `fixed` never move.
     pub(crate) fn new(triangles: &[[u32; 3]], n: usize, fixed: &[bool]) -> Self {
-        let mut star = vec![Vec::new(); n];
-        for (f, t) in triangles.iter().enumerate() {
-            for &v in t {
-                star[v as usize].push(f as u32);
-            }
-        }
+        let star = crate::mesh::stars(triangles, n);
         let ring = crate::mesh::one_rings(triangles, n);
         FoldRepair {
             triangles: triangles.to_vec(),

@@ -40,28 +40,25 @@ fn note(what: &str, tests: usize, how: &str) {
     );
 }
 
-/// Headless Chromium: `$CRMORPH_CHROMIUM`, else `chromium`, `chromium-browser` or
-/// `google-chrome` on the PATH.
-pub(crate) fn chromium(tests: usize) -> Found {
-    let found = match std::env::var_os("CRMORPH_CHROMIUM") {
+/// A program: `$env` if set, else the first of `names` on the PATH; `what` and `install` word
+/// the note when it is missing.
+fn find(env: &str, names: &[&str], what: &str, install: &str, tests: usize) -> Found {
+    let found = match std::env::var_os(env) {
         Some(p) => Some(PathBuf::from(p)),
-        None => on_path(&["chromium", "chromium-browser", "google-chrome"]),
+        None => on_path(names),
     };
     match found {
         Some(p) if runs(&p) => Found::Yes(p),
         other => {
             let why = match other {
                 Some(p) => format!("{} does not run", p.display()),
-                None => "no Chromium was found".to_string(),
+                None => format!("no {what} was found"),
             };
             if !required() {
                 note(
-                    "headless Chromium",
+                    what,
                     tests,
-                    &format!(
-                        "{why}; install it (Debian: apt-get install chromium) or set \
-                         CRMORPH_CHROMIUM=/path/to/chrome"
-                    ),
+                    &format!("{why}; install it (Debian: apt-get install {install}) or set {env}=/path/to/it"),
                 );
             }
             Found::Missing(why)
@@ -69,30 +66,25 @@ pub(crate) fn chromium(tests: usize) -> Found {
     }
 }
 
+/// Headless Chromium: `$CRMORPH_CHROMIUM`, else `chromium`, `chromium-browser` or
+/// `google-chrome` on the PATH.
+pub(crate) fn chromium(tests: usize) -> Found {
+    find(
+        "CRMORPH_CHROMIUM",
+        &["chromium", "chromium-browser", "google-chrome"],
+        "headless Chromium",
+        "chromium",
+        tests,
+    )
+}
+
 /// Node.js: `$CRMORPH_NODE`, else `node` on the PATH.
 pub(crate) fn node(tests: usize) -> Found {
-    let found = match std::env::var_os("CRMORPH_NODE") {
-        Some(p) => Some(PathBuf::from(p)),
-        None => on_path(&["node", "nodejs"]),
-    };
-    match found {
-        Some(p) if runs(&p) => Found::Yes(p),
-        other => {
-            let why = match other {
-                Some(p) => format!("{} does not run", p.display()),
-                None => "no Node.js was found".to_string(),
-            };
-            if !required() {
-                note(
-                    "Node.js",
-                    tests,
-                    &format!(
-                        "{why}; install it (Debian: apt-get install nodejs) or set \
-                         CRMORPH_NODE=/path/to/node"
-                    ),
-                );
-            }
-            Found::Missing(why)
-        }
-    }
+    find(
+        "CRMORPH_NODE",
+        &["node", "nodejs"],
+        "Node.js",
+        "nodejs",
+        tests,
+    )
 }
