@@ -259,6 +259,12 @@ fn push_ring(path: &mut BezPath, pts: &[Point], closed: bool) {
 }
 
 impl MorphingPath {
+    /// The source path's own geometry in the mesh's space: what the path is at t = 0 when it
+    /// alone draws its source path (its frames at t = 0 are the meshes' outline polylines).
+    pub fn exact_source_path(&self) -> BezPath {
+        self.source_root * self.source.path.clone()
+    }
+
     /// The path at `t` whose mesh is `vertices`.
     pub fn at(&self, meshes: &CompatibleMeshes, vertices: &[Point], t: f64) -> PathItem {
         let mut path = BezPath::new();

@@ -294,7 +294,48 @@ impl Morph {
             .map(|(v, t)| self.layers_at(v, t, true))
             .collect::<Result<Vec<_>>>()?;
         let refs: Vec<Vec<Layer>> = keyframes.iter().map(|k| layers(k)).collect();
-        animated_svg_layers(&refs, &tl, &self.frame)
+        // The static values (what a viewer without SMIL shows) are the source drawing exactly.
+        let base = self.exact_source_layers(&frames[0])?;
+        let base = layers(&base);
+        animated_svg_layers(&refs, &tl, &self.frame, Some(&base))
+    }
+
+    /// The layers of the first keyframe (`v` the mesh at t = 0) with the source drawing's own
+    /// geometry where the keyframe has a warped copy of it: blended parts as their exact
+    /// source scenes, and each morphing path that alone draws its source path as that path.
+    fn exact_source_layers(&self, v: &[Point]) -> Result<Vec<Owned>> {
+        let Some(m) = &self.morphing else {
+            let (s, g) = self.artwork.at(v)?;
+            return Ok(vec![Owned::Blend(s, g)]);
+        };
+        let alone = |p: &MorphingPath| {
+            p.covers.0.is_empty()
+                && p.source_item.is_some()
+                && m.paths
+                    .iter()
+                    .filter(|q| q.source_item == p.source_item)
+                    .count()
+                    == 1
+        };
+        m.stack
+            .iter()
+            .map(|part| match part {
+                Part::Rest(pair) => {
+                    let (s, g) = pair.at(v)?;
+                    Ok(Owned::Blend(s, g))
+                }
+                Part::Paths(r) => {
+                    let mut scene =
+                        overlay_at(&m.paths[r.clone()], &self.meshes, v, 0.0, &m.header);
+                    for (item, p) in scene.root.children.iter_mut().zip(&m.paths[r.clone()]) {
+                        if let (crate::artwork::Item::Path(item), true) = (item, alone(p)) {
+                            item.path = p.exact_source_path();
+                        }
+                    }
+                    Ok(Owned::Over(scene))
+                }
+            })
+            .collect()
     }
 
     /// The morph as an animated GIF (frames rendered in parallel; composited over the

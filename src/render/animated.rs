@@ -6,8 +6,8 @@
 //! - path data: one `<animate attributeName="d">` whose keyframes share one segment structure
 //!   (browsers snap instead of interpolating otherwise), polylines fitted with cubics that hold a
 //!   quarter pixel in *every* keyframe (`render::fit`);
-//! - numbers (stroke widths, dashes, the blend weights `k2`/`k3` of the filter that makes the frame
-//!   `(1 − t)·S_t + t·T_t`): `<animate>` with the numbers;
+//! - numbers (stroke widths, dashes, the opacities of the two sides of a cross-dissolve):
+//!   `<animate>` with the numbers;
 //! - transforms (images, gradients, shaped pens): decomposed as
 //!   `translate · rotate · skewX · scale`, one `<animateTransform>` each (the first replaces,
 //!   the rest add), the rotation unwrapped so it never jumps by a turn;
@@ -15,8 +15,8 @@
 //!
 //! Keyframes that linear interpolation between the kept neighbours already reproduces within
 //! the tolerance (a quarter pixel for geometry, 1/1000 for scale-free numbers) are dropped, per
-//! animation. The static attribute values are those of the first frame (t = 0), so a viewer
-//! without SMIL shows the source.
+//! animation. The static attribute values are those of the first frame (t = 0) with the source
+//! drawing's own geometry, so a viewer without SMIL (librsvg, thumbnailers) shows the source.
 //!
 //! Timing: the values run through [`Timeline::sequence`] (and back to the start for yoyo) at
 //! uniform `keyTimes` over one [`Timeline::period`]; played once, the animation freezes on the
@@ -48,16 +48,20 @@ pub fn animated_svg(
         .iter()
         .map(|(s, t)| vec![Layer::Blend(s, t)])
         .collect();
-    animated_svg_layers(&layers, timeline, opts)
+    animated_svg_layers(&layers, timeline, opts, None)
 }
 
 /// [`animated_svg`] of frames made of layers (see [`super::svg_frame::frame_svg_layers`]):
 /// `keyframes[i]` are keyframe `i`'s layers, bottom first. Every keyframe must have the same
 /// layers with the same structure (warped with [`crate::artwork::ArtworkPair::warped_at`]).
+/// `base`, when given, is the first keyframe with the source drawing's own geometry (same
+/// structure, exact paths): the static attribute values come from it, so that a viewer
+/// without SMIL shows the source drawing itself, not its warped copy.
 pub fn animated_svg_layers(
     keyframes: &[Vec<Layer>],
     timeline: &Timeline,
     opts: &FrameOptions,
+    base: Option<&[Layer]>,
 ) -> Result<String> {
     let timeline = timeline.sanitized();
     if keyframes.len() != timeline.frames {
@@ -83,7 +87,22 @@ pub fn animated_svg_layers(
         timing: timing(&timeline),
         key_decimals: (order.len() as f64).log10().ceil() as usize + 2,
     };
-    merge(&nodes, &ctx)?.to_svg_string()
+    let base = base.map(|layers| frame_tree(layers, 0.0, opts, Mode::Keyframe));
+    // A base of another structure (it should not happen) is ignored, not an error.
+    let base = base.filter(|b| same_shape(b, nodes[0]));
+    merge(&nodes, base.as_ref(), &ctx)?.to_svg_string()
+}
+
+/// Whether two trees have the same elements with the same attribute names, in order.
+fn same_shape(a: &Node, b: &Node) -> bool {
+    a.name == b.name
+        && a.attrs.len() == b.attrs.len()
+        && a.attrs.iter().zip(&b.attrs).all(|(x, y)| x.0 == y.0)
+        && a.children.len() == b.children.len()
+        && a.children
+            .iter()
+            .zip(&b.children)
+            .all(|(x, y)| same_shape(x, y))
 }
 
 /// What every animation of a file shares.
@@ -111,7 +130,7 @@ fn timing(tl: &Timeline) -> Vec<(&'static str, Value)> {
 
 /// One element across keyframes (`nodes[k]` = the element in keyframe k of the playback
 /// order) merged into one element with animations.
-fn merge(nodes: &[&Node], ctx: &Context) -> Result<Node> {
+fn merge(nodes: &[&Node], base: Option<&Node>, ctx: &Context) -> Result<Node> {
     let first = nodes[0];
     for n in nodes {
         let same = n.name == first.name
@@ -130,6 +149,14 @@ fn merge(nodes: &[&Node], ctx: &Context) -> Result<Node> {
     for (ai, (key, v0)) in first.attrs.iter().enumerate() {
         let values: Vec<&Value> = nodes.iter().map(|n| &n.attrs[ai].1).collect();
         let (stat, anims) = attribute(key, v0, &values, ctx);
+        // The static value from the base where it has one of the same kind.
+        let stat = match (base.map(|b| &b.attrs[ai].1), &stat) {
+            (Some(Value::Path { path, decimals, .. }), Value::Text(_)) => {
+                Value::Text(path_data(path, *decimals))
+            }
+            (Some(v), _) if std::mem::discriminant(v) == std::mem::discriminant(&stat) => v.clone(),
+            _ => stat,
+        };
         out.attrs.push((key, stat));
         animations.extend(anims);
     }
@@ -137,7 +164,7 @@ fn merge(nodes: &[&Node], ctx: &Context) -> Result<Node> {
         .into_par_iter()
         .map(|ci| {
             let kids: Vec<&Node> = nodes.iter().map(|n| &n.children[ci]).collect();
-            merge(&kids, ctx)
+            merge(&kids, base.map(|b| &b.children[ci]), ctx)
         })
         .collect::<Result<_>>()?;
     out.children = children;

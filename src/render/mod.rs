@@ -66,3 +66,12 @@ impl FrameOptions {
 
 #[cfg(test)]
 mod tests;
+
+/// The opacities `(a, b)` of the source and the target side of a cross-dissolve at `t`:
+/// `a = min(1, 2(1 − t))` under `b = min(1, 2t)` (see [`svg_frame`]). The target fades in over
+/// the source in the first half and the uncovered source fades out in the second; each is a
+/// plain group opacity, which every SVG renderer implements alike.
+pub fn dissolve(t: f64) -> (f64, f64) {
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    ((2.0 * (1.0 - t)).min(1.0), (2.0 * t).min(1.0))
+}

@@ -39,15 +39,15 @@ fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
     Ok(pixmap)
 }
 
-/// The frame at `t` (clamped to [0, 1]) as pixels: the warped `source` and `target` rendered,
-/// blended `(1 − t)·S + t·T` on premultiplied RGBA, over `opts.background` if any. At t = 0 and
-/// t = 1 only that side is rendered.
+/// The frame at `t` (clamped to [0, 1]) as pixels: the warped `source` and `target` rendered
+/// and cross-dissolved as the SVG frame draws them ([`super::dissolve`]), over
+/// `opts.background` if any. At t = 0 and t = 1 only that side is rendered.
 pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) -> Result<Pixmap> {
     frame_pixmap_layers(&[Layer::Blend(source, target)], t, opts)
 }
 
 /// The frame at `t` made of `layers`, bottom first (see [`super::svg_frame::frame_svg_layers`]):
-/// each [`Layer::Blend`] rendered and blended on its own, each [`Layer::Over`] rendered, and
+/// each [`Layer::Blend`] rendered and dissolved on its own, each [`Layer::Over`] rendered, and
 /// each composited source-over onto the layers below, then over the background. At t = 0
 /// (t = 1) a blend layer is its source (target) side alone.
 pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Result<Pixmap> {
@@ -141,11 +141,22 @@ pub fn encode_png(pixmap: &Pixmap) -> Result<Vec<u8>> {
     Ok(out)
 }
 
-/// `s ← (1 − t)·s + t·d` per premultiplied channel, rounded to nearest.
+/// `s ← b·d over a·s` (premultiplied RGBA, rounded to nearest) with the dissolve's opacities
+/// at `t`: the pixel form of the SVG frame's two groups.
 pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
-    let (a, b) = ((1.0 - t) as f32, t as f32);
-    for (x, y) in s.data_mut().iter_mut().zip(d.data()) {
-        *x = (a * *x as f32 + b * *y as f32).round().clamp(0.0, 255.0) as u8;
+    let (a, b) = super::dissolve(t);
+    let (a, b) = (a as f32, b as f32);
+    for (x, y) in s
+        .data_mut()
+        .chunks_exact_mut(4)
+        .zip(d.data().chunks_exact(4))
+    {
+        let cover = 1.0 - b * y[3] as f32 / 255.0;
+        for k in 0..4 {
+            x[k] = (b * y[k] as f32 + cover * a * x[k] as f32)
+                .round()
+                .clamp(0.0, 255.0) as u8;
+        }
     }
 }
 
@@ -201,16 +212,16 @@ mod tests {
             };
             assert_eq!(rgba(1, 1), [255, 0, 0, 255], "t = {t}");
             assert_eq!(rgba(7, 7), [0, 0, 255, 255], "t = {t}");
-            // The centre: blue under the detail at weight t.
-            let w = (255.0 * t).round() as u8;
+            // The centre: blue under the detail at the dissolve's target opacity.
+            let w = (255.0 * crate::render::dissolve(t).1).round() as u8;
             let c = rgba(15, 15);
             assert!(
                 c[0].abs_diff(w) <= 1 && c[2] == 255 && c[3] == 255,
                 "t = {t}: {c:?}"
             );
-            // The SVG frame stacks the same way (one filter group per blend layer).
+            // The SVG frame stacks the same way (a source and a target group per blend layer).
             let svg = frame_svg_layers(&layers, t, &opts).unwrap();
-            let groups = svg.matches("filter=\"url(#crmorph-blend)\"").count();
+            let groups = svg.matches("class=\"crmorph-target\"").count();
             assert_eq!(groups, if t == 0.5 { 2 } else { 0 });
             let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
             let mut from_svg = Pixmap::new(30, 30).unwrap();

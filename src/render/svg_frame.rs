@@ -1,30 +1,22 @@
 //! One frame as a standalone SVG file.
 //!
-//! Frame t shows the linear blend `(1 − t)·S_t + t·T_t` of the warped source and target
-//! renderings, alpha included (end of §3: the transferred shapes are blended). Plain group
-//! opacities cannot express this: `S` at opacity `1 − t` under `T` at opacity `t` has alpha
-//! `1 − t + t²` where both are opaque, so the mid frame is see-through (and its colour weights are
-//! `(1 − t)²` and `t`, not `1 − t` and `t`). So the frame blends the two *renderings* with one
-//! filter, which Chromium, Firefox, Safari and resvg all implement:
-//!
-//! ```text
-//! <g filter="url(#crmorph-blend)">            filter region: the view and its copy to the right
-//!   <g clip-path=view> S_t </g>               the source, clipped to the view
-//!   <g translate(D,0)><g clip-path=view> T_t  the target, clipped, moved right by D: the view's
-//! </g>                                        width rounded up to whole output pixels
-//! feOffset dx=−D of SourceGraphic             brings T_t over S_t
-//! feComposite arithmetic k2=1−t k3=t          (1−t)·S + t·T on premultiplied RGBA, limited to the view
-//! ```
-//!
-//! `color-interpolation-filters="sRGB"` makes the blend happen on the same sRGB values a pixel
-//! blend uses (the default, linearRGB, would brighten mid-tones). The clips keep overhanging
-//! artwork of one side from being shifted into the view with the other. At t = 0 and t = 1 there
-//! is no filter at all: the frame is the one drawing, rendering exactly as the input.
+//! Frame t shows the warped source and target renderings `S_t` and `T_t` cross-dissolved:
+//! `S_t` at opacity `a(t) = min(1, 2(1 − t))` with `T_t` over it at opacity `b(t) = min(1, 2t)`
+//! ([`super::dissolve`]): the target fades in over the source during the first half, and what of
+//! the source the target does not cover fades out during the second. Two groups with plain
+//! `opacity`, nothing else — unlike the paper's linear blend `(1 − t)·S + t·T`, which plain
+//! group opacity cannot express (alpha `1 − t + t²` where both are opaque) and which crmorph
+//! used to write as an arithmetic `feComposite` over the two drawings side by side. That needs
+//! the target drawn beside the view, which librsvg clips away (its frames came out half
+//! transparent), so every renderer — resvg, librsvg, Chromium, Firefox — now draws the same
+//! thing from the same two groups, and the raster frames composite the same way. Where the two
+//! drawings coincide (most of a morph: both are carried by one mesh) the dissolve shows no
+//! see-through half-way frame; at t = 0 and t = 1 the frame is the one drawing.
 //!
 //! A frame may be a stack of such blends interleaved with unblended artwork ([`Layer`]):
 //! automatic mode's matched paths morph as one shape each and sit between the blended parts of
 //! the rest of the artwork painted below and above them, so the frame keeps the inputs' paint
-//! order. Every blend layer is its own filter group; all share the one filter and clip.
+//! order. Every blend layer is its own pair of groups.
 //!
 //! Output is deterministic: elements in paint order, generated ids numbered in that order,
 //! coordinates rounded to 1/100 px at the output size. Warped (flattened) outlines are fitted
@@ -59,15 +51,15 @@ pub fn frame_svg(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions) ->
 /// interleaved so that the frame keeps the input drawings' paint order.
 #[derive(Debug, Clone, Copy)]
 pub enum Layer<'a> {
-    /// The warped source and target of one part of the artwork, blended `(1 − t)·S + t·T`
-    /// on their own (their own filter group), then painted over the layers below.
+    /// The warped source and target of one part of the artwork, cross-dissolved on their own
+    /// (module docs), then painted over the layers below.
     Blend(&'a Scene, &'a Scene),
     /// Artwork painted as it is over the layers below: paths that morph as one shape.
     Over(&'a Scene),
 }
 
-/// The frame at `t` made of `layers`, bottom first: each [`Layer::Blend`] blended on its own
-/// as in [`frame_svg`] (one shared filter and clip), each [`Layer::Over`] drawn unblended. At
+/// The frame at `t` made of `layers`, bottom first: each [`Layer::Blend`] dissolved on its own
+/// as in [`frame_svg`], each [`Layer::Over`] drawn as it is. At
 /// t = 0 (t = 1) a blend layer is its source (target) side as it is.
 pub fn frame_svg_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Result<String> {
     frame_tree(layers, t, opts, Mode::Still).to_svg_string()
@@ -144,86 +136,25 @@ pub(crate) fn frame_tree(layers: &[Layer], t: f64, opts: &FrameOptions, mode: Mo
     let mut doc = Document::new(opts, Some(tol), mode == Mode::Keyframe);
     let mut defs = Builder::new();
     let mut body = Builder::new();
-    let (lo, hi) = opts.view_box;
-    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
-    // The target's shift D: at least the view's width, and a whole number of output pixels so
-    // that feOffset moves pixels without resampling them (which would blur the target).
-    let px = {
-        let (sx, sy) = (opts.size.0 as f64 / w, opts.size.1 as f64 / h);
-        sx.min(sy) // the uniform scale of the default `xMidYMid meet`
-    };
-    let shift = if px.is_finite() && px > 0.0 {
-        (w * px).ceil() / px
-    } else {
-        w
-    };
-    let n = |x: f64| Value::num(x, NumFormat::Fixed(doc.decimals));
-    // The clip and filter definitions, shared by every blend layer.
-    if layers.iter().any(|l| matches!(l, Layer::Blend(..))) {
-        defs.open("clipPath", vec![("id", "crmorph-view".into())]);
-        defs.empty(
-            "rect",
-            vec![
-                ("x", n(lo.x)),
-                ("y", n(lo.y)),
-                ("width", n(w)),
-                ("height", n(h)),
-            ],
-        );
-        defs.close();
-        defs.open(
-            "filter",
-            vec![
-                ("id", "crmorph-blend".into()),
-                ("filterUnits", "userSpaceOnUse".into()),
-                ("x", n(lo.x)),
-                ("y", n(lo.y)),
-                ("width", n(w + shift)),
-                ("height", n(h)),
-                ("color-interpolation-filters", "sRGB".into()),
-            ],
-        );
-        defs.empty(
-            "feOffset",
-            vec![
-                ("in", "SourceGraphic".into()),
-                ("dx", n(-shift)),
-                ("dy", "0".into()),
-                ("result", "target".into()),
-            ],
-        );
-        defs.empty(
-            "feComposite",
-            vec![
-                ("in", "SourceGraphic".into()),
-                ("in2", "target".into()),
-                ("operator", "arithmetic".into()),
-                ("k1", "0".into()),
-                ("k2", Value::num(1.0 - t, NumFormat::Sig)),
-                ("k3", Value::num(t, NumFormat::Sig)),
-                ("k4", "0".into()),
-                ("x", n(lo.x)),
-                ("y", n(lo.y)),
-                ("width", n(w)),
-                ("height", n(h)),
-            ],
-        );
-        defs.close();
-    }
-    let shifted = format!("translate({} 0)", fixed(shift, doc.decimals));
+    let (a, b) = super::dissolve(t);
     for layer in layers {
         match *layer {
             Layer::Blend(source, target) => {
-                body.open("g", vec![("filter", "url(#crmorph-blend)".into())]);
-                body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
-                doc.side(source, "s", &mut defs, &mut body);
-                body.close();
-                body.open("g", vec![("transform", shifted.clone().into())]);
-                body.open("g", vec![("clip-path", "url(#crmorph-view)".into())]);
-                doc.side(target, "t", &mut defs, &mut body);
-                body.close();
-                body.close();
-                body.close();
+                // The class names the layer for tools; the opacities are the dissolve.
+                for (scene, prefix, class, opacity) in [
+                    (source, "s", "crmorph-source", a),
+                    (target, "t", "crmorph-target", b),
+                ] {
+                    body.open(
+                        "g",
+                        vec![
+                            ("class", class.into()),
+                            ("opacity", Value::num(opacity, NumFormat::Sig)),
+                        ],
+                    );
+                    doc.side(scene, prefix, &mut defs, &mut body);
+                    body.close();
+                }
             }
             Layer::Over(o) => doc.side(o, "o", &mut defs, &mut body),
         }

@@ -507,7 +507,7 @@ fn in_between_frames_keep_the_inputs_paint_order() {
     let anim = a.morph.animated_svg(&tl).unwrap();
     usvg::Tree::from_str(&anim, &usvg::Options::default()).unwrap();
     assert!(
-        !anim.contains("crmorph-blend"),
+        !anim.contains("crmorph-target"),
         "nothing left to cross-fade"
     );
     assert_eq!(anim, a.morph.animated_svg(&tl).unwrap(), "deterministic");
@@ -523,7 +523,7 @@ fn gradients_interpolate_on_paths_that_morph_as_one_shape() {
     );
     let svg = a.morph.svg_at(0.5).unwrap();
     assert!(svg.contains("<linearGradient") && svg.contains("<radialGradient"));
-    assert!(!svg.contains("crmorph-blend"), "nothing left to blend");
+    assert!(!svg.contains("crmorph-target"), "nothing left to blend");
     no_pop_near_the_ends(&a.morph, "gradient-badge");
     for t in [0.25, 0.5, 0.75] {
         let px = a.morph.pixmap_at(t).unwrap();

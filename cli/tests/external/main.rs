@@ -1,5 +1,6 @@
-//! Tests that need a program outside Rust: headless Chromium (what a browser shows) and Node
-//! (the HTML preview's script).
+//! Tests that need a program outside Rust: headless Chromium and Firefox (what a browser shows),
+//! librsvg (the other SVG renderer of the four crmorph's SVG must render alike in) and Node (the
+//! HTML preview's script).
 //!
 //! This binary has its own harness (libtest-mimic) so that a missing program is reported as what
 //! it is: each test that needs it is listed as `ignored`, and one note per program says how to
@@ -9,6 +10,7 @@
 
 mod browser;
 mod node;
+mod renderers;
 mod tools;
 
 use libtest_mimic::{Arguments, Trial};
@@ -18,6 +20,7 @@ fn main() {
     let mut trials = Vec::new();
     trials.extend(browser::trials());
     trials.extend(node::trials());
+    trials.extend(renderers::trials());
     libtest_mimic::run(&args, trials).exit();
 }
 
@@ -26,7 +29,7 @@ fn main() {
 pub(crate) fn needing(
     name: &str,
     tool: &tools::Found,
-    run: fn(&std::path::Path) -> Result<(), String>,
+    run: impl Fn(&std::path::Path) -> Result<(), String> + Send + Sync + 'static,
 ) -> Trial {
     match tool {
         tools::Found::Yes(t) => {

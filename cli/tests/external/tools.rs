@@ -88,3 +88,25 @@ pub(crate) fn node(tests: usize) -> Found {
         tests,
     )
 }
+
+/// librsvg's command line: `$CRMORPH_RSVG`, else `rsvg-convert` on the PATH.
+pub(crate) fn rsvg(tests: usize) -> Found {
+    find(
+        "CRMORPH_RSVG",
+        &["rsvg-convert"],
+        "librsvg (rsvg-convert)",
+        "librsvg2-bin",
+        tests,
+    )
+}
+
+/// Headless Firefox: `$CRMORPH_FIREFOX`, else `firefox-esr` or `firefox` on the PATH.
+pub(crate) fn firefox(tests: usize) -> Found {
+    find(
+        "CRMORPH_FIREFOX",
+        &["firefox-esr", "firefox"],
+        "Firefox",
+        "firefox-esr",
+        tests,
+    )
+}
