@@ -217,7 +217,7 @@ fn panel(
             ("x", &x),
             ("y", &y),
             ("text-anchor", "middle"),
-            ("font-family", "sans-serif"),
+            ("font-family", "DejaVu Sans, sans-serif"),
             ("font-size", "15"),
             ("fill", "#333"),
         ],

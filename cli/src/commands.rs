@@ -69,7 +69,7 @@ pub(crate) struct Inputs {
     #[arg(long, default_value = "skeleton")]
     pub(crate) skeleton_id: String,
     /// Vertex density multiplier: 2 gives twice as many vertices per unit length.
-    #[arg(long, default_value_t = 1.0, value_parser = positive_f64)]
+    #[arg(long, default_value_t = 1.0, value_parser = positive_f64, allow_hyphen_values = true)]
     pub(crate) density: f64,
     /// Which drawing to triangulate and map onto the other.
     #[arg(long, value_enum, default_value_t = From::Source)]
@@ -100,7 +100,11 @@ pub(crate) struct InspectArgs {
     #[command(flatten)]
     pub(crate) inputs: Inputs,
     /// Width of a .png picture in pixels (default: the picture's own width).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=16384))]
+    #[arg(
+        long,
+        value_parser = clap::value_parser!(u32).range(16..=16384),
+        allow_hyphen_values = true
+    )]
     pub(crate) width: Option<u32>,
 }
 
@@ -110,7 +114,7 @@ pub(crate) struct FrameArgs {
     #[command(flatten)]
     pub(crate) inputs: Inputs,
     /// Time of the frame, from 0 (source) to 1 (target).
-    #[arg(long, value_parser = unit_f64)]
+    #[arg(long, value_parser = unit_f64, allow_hyphen_values = true)]
     pub(crate) at: f64,
     /// Interpolation method.
     #[arg(long, value_enum, default_value_t = MethodArg::Disc)]
@@ -127,7 +131,7 @@ pub(crate) struct SkeletonArgs {
     #[command(flatten)]
     pub(crate) inputs: Inputs,
     /// Time of the frame, strictly between 0 (source) and 1 (target).
-    #[arg(long, value_parser = unit_f64)]
+    #[arg(long, value_parser = unit_f64, allow_hyphen_values = true)]
     pub(crate) at: f64,
     #[command(flatten)]
     pub(crate) look: Look,
@@ -181,10 +185,15 @@ pub(crate) struct Look {
 #[derive(Debug, Clone, Args)]
 pub(crate) struct Timing {
     /// Number of frames, the first at t = 0 and the last at t = 1.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    #[arg(
+        long,
+        default_value_t = 60,
+        value_parser = clap::value_parser!(u32).range(2..=10000),
+        allow_hyphen_values = true
+    )]
     pub(crate) frames: u32,
     /// Seconds from the source to the target.
-    #[arg(long, default_value_t = 2.0, value_parser = duration)]
+    #[arg(long, default_value_t = 2.0, value_parser = duration, allow_hyphen_values = true)]
     pub(crate) duration: f64,
     /// How the morph's progress follows time.
     #[arg(long, value_enum, default_value_t = EasingArg::Linear)]

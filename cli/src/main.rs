@@ -5,6 +5,7 @@
 
 mod commands;
 mod demo;
+mod docs;
 mod output;
 mod progress;
 
@@ -13,14 +14,37 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use commands::{FrameArgs, InspectArgs, MorphArgs, SkeletonArgs, Usage};
+use docs::{CompletionsArgs, ManArgs};
 use progress::Progress;
+
+/// The markup conventions, shown after `crmorph --help` (docs/conventions.md has the details).
+const CONVENTIONS: &str = "\
+Marking up a drawing (control geometry is found by element id):
+  boundary          the shape's closed outline (default: the viewBox rectangle)
+  feature-NAME      a feature curve inside it, matched by NAME in the other file
+  anchor-NAME       a point pinning the nearest curve points of the two files together
+  skeleton[-NAME]   source only: polylines whose vertices are joints (for --pose)
+  <g id=\"controls\"> guides inside this group are never drawn
+Rename them with --boundary-id, --feature-prefix and --skeleton-id. Two files with neither a
+boundary nor a feature curve morph in automatic mode: filled shapes and strokes pair with
+those of the other file, each pair on its own compatible triangulation.
+
+Shell completions: crmorph completions bash|zsh|fish|elvish|powershell
+Manual page:       crmorph man [COMMAND]";
 
 /// crmorph morphs one SVG drawing into another the way an animator would: rigidly, with interior
 /// feature curves kept aligned (CR-Morph). With no command, it morphs the bundled demo into
 /// ./crmorph-demo/.
 #[derive(Debug, Parser)]
-#[command(name = "crmorph", version, about, long_about = None)]
-struct Cli {
+#[command(
+    name = "crmorph",
+    version,
+    about,
+    long_about = None,
+    propagate_version = true,
+    after_help = CONVENTIONS
+)]
+pub(crate) struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
     /// Show no progress on stderr.
@@ -39,6 +63,12 @@ enum Command {
     Inspect(InspectArgs),
     /// The derived skeleton at time T drawn over that frame (.svg), to edit into a --pose file.
     Skeleton(SkeletonArgs),
+    /// Print a shell completion script to stdout, e.g. `crmorph completions bash >
+    /// ~/.local/share/bash-completion/completions/crmorph`.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff) to stdout, e.g. `crmorph man | man -l -`; with a COMMAND,
+    /// that command's page.
+    Man(ManArgs),
 }
 
 fn run(cli: &Cli) -> anyhow::Result<()> {
@@ -49,6 +79,8 @@ fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Frame(a)) => commands::frame(a, &progress),
         Some(Command::Inspect(a)) => commands::inspect(a, &progress),
         Some(Command::Skeleton(a)) => commands::skeleton(a, &progress),
+        Some(Command::Completions(a)) => docs::completions(a, &mut std::io::stdout().lock()),
+        Some(Command::Man(a)) => docs::man(a, &mut std::io::stdout().lock()),
     };
     progress.finish();
     r

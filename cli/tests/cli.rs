@@ -333,6 +333,50 @@ fn inspect_renders_png() {
 }
 
 #[test]
+fn inspect_png_has_its_captions() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let (svg, png) = (dir.path().join("tri.svg"), dir.path().join("tri.png"));
+    for out in [&svg, &png] {
+        let o = run(&[os("inspect"), os(&s), os(&t), os("-o"), os(out)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    // Each panel's caption is a <text> centred under it, in the band below the panels.
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(text.matches("<text ").count(), 2);
+    let img = tiny_skia::Pixmap::load_png(&png).unwrap();
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let (panel, band) = (w / 2, h - w / 2); // panels are square, the caption band below them
+    assert!(band > 10, "{w}×{h}");
+    let dark = |x: usize, y: usize| {
+        let p = img.pixel(x as u32, y as u32).unwrap();
+        p.alpha() > 200 && p.red() < 128 && p.green() < 128 && p.blue() < 128
+    };
+    for k in 0..2 {
+        let ink: Vec<usize> = (panel..h)
+            .flat_map(|y| (k * panel..(k + 1) * panel).map(move |x| (x, y)))
+            .filter(|&(x, y)| dark(x, y))
+            .map(|(x, _)| x - k * panel)
+            .collect();
+        // A line of text: hundreds of dark pixels, spread over much of the panel's width and
+        // centred under it.
+        assert!(ink.len() > 300, "panel {k}: {} caption pixels", ink.len());
+        let (lo, hi) = (*ink.iter().min().unwrap(), *ink.iter().max().unwrap());
+        assert!(hi - lo > panel / 4, "panel {k}: caption {lo}..{hi}");
+        let centre = (lo + hi) as f64 / 2.0;
+        assert!(
+            (centre - panel as f64 / 2.0).abs() < 0.05 * panel as f64,
+            "panel {k}: {centre}"
+        );
+    }
+    // The same picture on every run (the font is bundled, not looked up on the system).
+    let again = dir.path().join("again.png");
+    let o = run(&[os("inspect"), os(&s), os(&t), os("-o"), os(&again)]);
+    assert!(o.status.success());
+    assert_eq!(std::fs::read(&png).unwrap(), std::fs::read(&again).unwrap());
+}
+
+#[test]
 fn morph_usage_errors_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
@@ -499,4 +543,115 @@ fn pose_errors_name_the_file() {
     ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("missing.svg"), "{}", stderr(&o));
+}
+
+#[test]
+fn negative_numbers_are_values_reported_out_of_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let out = dir.path().join("f.json");
+    for (flag, value, problem) in [
+        ("--at", "-0.1", "must be in [0, 1]"),
+        ("--at", "-1e-9", "must be in [0, 1]"),
+        ("--density", "-2", "must be a number in (0, 100]"),
+    ] {
+        let mut args = vec![os("frame"), os(&s), os(&t), os("-o"), os(&out)];
+        if flag != "--at" {
+            args.extend([os("--at"), os("0.5")]);
+        }
+        args.extend([os(flag), os(value)]);
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(!e.contains("unexpected argument"), "{e}");
+        assert!(
+            e.contains(&format!("invalid value '{value}' for '{flag}")) && e.contains(problem),
+            "{e}"
+        );
+        assert!(!out.exists());
+    }
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&dir.path().join("m.svg")),
+        os("--frames"),
+        os("-3"),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("-3 is not in 2..=10000"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn every_command_answers_version() {
+    let version = env!("CARGO_PKG_VERSION");
+    for args in [
+        &["--version"][..],
+        &["morph", "--version"],
+        &["frame", "-V"],
+        &["inspect", "--version"],
+        &["skeleton", "--version"],
+    ] {
+        let o = bin().args(args).output().unwrap();
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            text.starts_with("crmorph") && text.trim_end().ends_with(version),
+            "{args:?}: {text}"
+        );
+    }
+}
+
+#[test]
+fn completions_and_manual_pages_are_printed() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let o = bin().args(["completions", shell]).output().unwrap();
+        assert!(o.status.success(), "{shell}: {}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout);
+        for c in ["morph", "frame", "inspect", "skeleton", "completions"] {
+            assert!(text.contains(c), "{shell}: no {c}");
+        }
+    }
+    let o = bin().args(["completions", "tcsh"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let o = bin().arg("man").output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let page = String::from_utf8_lossy(&o.stdout);
+    assert!(page.contains(".TH crmorph 1"));
+    for c in [
+        "morph",
+        "frame",
+        "inspect",
+        "skeleton",
+        "completions",
+        "man",
+    ] {
+        assert!(page.contains(&format!("crmorph\\-{c}(1)")), "no {c}");
+    }
+    let o = bin().args(["man", "frame"]).output().unwrap();
+    let page = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && page.contains(".TH crmorph-frame 1"));
+    assert!(page.contains("\\-\\-at"));
+    let o = bin().args(["man", "nonsense"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: crmorph has no command 'nonsense'"));
+    // `--help` tells where to find both, and the markup conventions.
+    let o = bin().arg("--help").output().unwrap();
+    let help = String::from_utf8_lossy(&o.stdout);
+    for needle in [
+        "crmorph completions",
+        "crmorph man",
+        "feature-NAME",
+        "anchor-NAME",
+        "id=\"controls\"",
+        "--boundary-id",
+        "automatic mode",
+    ] {
+        assert!(help.contains(needle), "--help lacks {needle}");
+    }
 }

@@ -40,7 +40,8 @@ pub struct PreviewMesh<'a> {
 /// - `#crmorph-play` plays and pauses (and replays a finished [`Playback::Once`] morph);
 /// - `#crmorph-time`, a slider over the forward morph (`0..1`, animation time `τ · duration`),
 ///   scrubs it with `pauseAnimations()` / `setCurrentTime()`; an `input` event is all it needs,
-///   so a test harness can drive it without user interaction;
+///   so a test harness can drive it without user interaction. Dragging is continuous; the
+///   arrow keys step one frame of the timeline, Page Up/Down a tenth, Home/End the ends;
 /// - `#crmorph-t` shows the morph's `t` (τ through the easing);
 /// - `#crmorph-mesh` toggles the triangulation overlay: a thin, semi-transparent,
 ///   non-scaling-stroke `<path>` appended to the inline `<svg>` (in `#crmorph-stage`),
@@ -188,8 +189,9 @@ fn page_data(tl: &Timeline, mesh: &PreviewMesh<'_>) -> String {
     };
     let _ = write!(
         s,
-        "const CRMORPH = {{\"duration\": {}, \"playback\": \"{playback}\", \"easing\": \"{easing}\", \"step\": {step:?},\n\"times\": [",
-        tl.duration
+        "const CRMORPH = {{\"duration\": {}, \"frames\": {}, \"playback\": \"{playback}\", \"easing\": \"{easing}\", \"step\": {step:?},\n\"times\": [",
+        tl.duration,
+        tl.frames.max(2)
     );
     for (k, &i) in picked.iter().enumerate() {
         let tau = if n > 1 {
@@ -252,7 +254,7 @@ h1 { margin: 0; font-size: 1rem; font-weight: 600; color: #444; }
 /// The controls under the drawing; the ids are the page's interface for scripts and tests.
 const CONTROLS: &str = r#"<div class="crmorph-controls">
 <button type="button" id="crmorph-play">Pause</button>
-<input type="range" id="crmorph-time" min="0" max="1" step="0.001" value="0" aria-label="Morph time">
+<input type="range" id="crmorph-time" min="0" max="1" step="any" value="0" aria-label="Morph time">
 <output id="crmorph-t" for="crmorph-time">t = 0.000</output>
 <label><input type="checkbox" id="crmorph-mesh"> show triangulation</label>
 </div>
@@ -395,12 +397,30 @@ const SCRIPT: &str = r##"(function () {
     setButton();
   });
 
-  slider.addEventListener("input", function () {
-    if (playing) { wasPlaying = true; pause(); }
-    var tau = Math.min(1, Math.max(0, +slider.value));
+  function seek(tau) {
+    tau = Math.min(1, Math.max(0, tau));
     if (smil) { svg.setCurrentTime(tau * D.duration); }
     show(tau);
     setButton();
+  }
+
+  slider.addEventListener("input", function () {
+    if (playing) { wasPlaying = true; pause(); }
+    seek(+slider.value);
+  });
+
+  // The keys step whole frames, as in an animation tool: arrows one frame, Page Up/Down a
+  // tenth of the morph, Home/End the ends. Stepping pauses playback and leaves it paused.
+  slider.addEventListener("keydown", function (e) {
+    var last = D.frames - 1, k = Math.round(+slider.value * last);
+    var to = { ArrowRight: k + 1, ArrowUp: k + 1, ArrowLeft: k - 1, ArrowDown: k - 1,
+      PageUp: k + Math.max(1, Math.round(last / 10)), PageDown: k - Math.max(1, Math.round(last / 10)),
+      Home: 0, End: last }[e.key];
+    if (to === undefined) { return; }
+    if (e.preventDefault) { e.preventDefault(); }
+    if (playing) { pause(); }
+    wasPlaying = false;
+    seek(Math.min(last, Math.max(0, to)) / last);
   });
 
   slider.addEventListener("change", function () {

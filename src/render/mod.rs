@@ -9,6 +9,7 @@
 
 pub mod animated;
 mod fit;
+mod font;
 mod raster;
 pub mod svg_frame;
 mod tree;

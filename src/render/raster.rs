@@ -162,8 +162,15 @@ pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
 
 /// Any SVG document (for example [`crate::inspect::inspect_svg`]'s picture) rendered to PNG at
 /// `width` pixels wide (default: its own width), height in proportion.
+///
+/// Text is set in the bundled DejaVu Sans subset, whatever family it names, and no system font
+/// is read: crmorph's own pictures (the inspect captions) look the same on every machine.
 pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
-    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+    let opts = usvg::Options {
+        fontdb: super::font::bundled_fontdb(),
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opts)
         .map_err(|e| Error::internal(format!("cannot read the SVG to render: {e}")))?;
     let size = tree.size();
     let w = width.map(|w| w as f32).unwrap_or(size.width()).max(1.0);

@@ -18,6 +18,7 @@ pub(crate) fn trials() -> Vec<Trial> {
             &node,
             slider_scrubs,
         ),
+        needing("node::preview_keys_step_one_frame", &node, keys_step_frames),
     ]
 }
 
@@ -91,7 +92,8 @@ function El(id) { this.id = id; this.attrs = {}; this.style = {}; this.handlers 
   this.value = "0"; this.checked = false; this.disabled = false; this.textContent = ""; }
 El.prototype.setAttribute = function (k, v) { this.attrs[k] = String(v); };
 El.prototype.addEventListener = function (k, f) { this.handlers[k] = f; };
-El.prototype.fire = function (k) { this.handlers[k]({ type: k }); };
+El.prototype.fire = function (k, key) { this.handlers[k]({ type: k, key: key,
+  preventDefault: function () { this.prevented = true; } }); };
 var svg = new El("svg"); svg.namespaceURI = "ns"; svg.children = []; svg.clock = 0.7;
 svg.paused = false;
 svg.appendChild = function (c) { this.children.push(c); };
@@ -136,6 +138,36 @@ fn slider_scrubs(node: &Path) -> Result<(), String> {
     let d = f[1];
     if d.matches('M').count() != 5 || !d.starts_with("M5 0.12L15 0.12") {
         return Err(format!("unexpected overlay path: {d}"));
+    }
+    Ok(())
+}
+
+/// What the harness prints after pressing keys on the slider: `t` after each press, then
+/// whether playback is paused.
+const KEYS: &str = r##"
+var out = [];
+["ArrowRight", "ArrowRight", "ArrowLeft", "End", "ArrowRight", "PageDown", "Home", "ArrowLeft"]
+  .forEach(function (k) {
+    els["crmorph-time"].fire("keydown", k);
+    out.push(els["crmorph-t"].textContent.slice(4) + "@" + svg.clock.toFixed(4));
+  });
+console.log(out.join(" ") + "|" + svg.paused);
+"##;
+
+fn keys_step_frames(node: &Path) -> Result<(), String> {
+    // 5 frames over 2 s: one key press is a quarter of the morph, 0.5 s; Page Down is a tenth
+    // of the frames rounded up to one; the ends clamp. The page starts playing at 0.7 s
+    // (frame 1.4, so the first press lands on frame 2) and a key press pauses it.
+    let p = page(5, Playback::Once);
+    let js = format!("{FAKE_DOM}{}{KEYS}", script_of(&p)?);
+    let (ok, out) = run(node, &js, false)?;
+    if !ok {
+        return Err(out);
+    }
+    let want = "0.500@1.0000 0.750@1.5000 0.500@1.0000 1.000@2.0000 1.000@2.0000 \
+                0.750@1.5000 0.000@0.0000 0.000@0.0000|true";
+    if out.trim() != want {
+        return Err(format!("key steps: got {}, want {want}", out.trim()));
     }
     Ok(())
 }
