@@ -361,6 +361,12 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
     refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
     progress.stage("reading drawings");
     let (s, t) = read_both(inputs)?;
+    // Ids that almost follow a convention are plain artwork; say so before anything they cause.
+    for d in [&s, &t] {
+        for n in &d.controls.near_misses {
+            progress.note(&format!("{}: {}", d.file, n.note()));
+        }
+    }
     let mut opts = MorphOptions::default();
     opts.from_target = inputs.from == From::Target;
     opts.density = inputs.density;

@@ -655,3 +655,70 @@ fn completions_and_manual_pages_are_printed() {
         assert!(help.contains(needle), "--help lacks {needle}");
     }
 }
+
+#[test]
+fn ids_that_almost_follow_a_convention_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = fixture("gourd/source.svg");
+    let text = std::fs::read_to_string(fixture("gourd/target.svg")).unwrap();
+    let out = dir.path().join("f.svg");
+    for (from, to, want) in [
+        (
+            "id=\"boundary\"",
+            "id=\"Boundary\"",
+            "has no 'boundary' element, but ",
+        ),
+        (
+            "id=\"feature-vine\"",
+            "id=\"feature_vine\"",
+            "feature-vine is in ",
+        ),
+        (
+            "id=\"anchor-stem-tip\"",
+            "id=\"Anchor-stem-tip\"",
+            "'anchor-stem-tip': has no twin in ",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let tgt = dir.path().join("typo.svg");
+        std::fs::write(&tgt, text.replace(from, to)).unwrap();
+        let o = run(&[
+            os("frame"),
+            os(&src),
+            os(&tgt),
+            os("--at"),
+            os("0.5"),
+            os("-o"),
+            os(&out),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{to}");
+        let e = stderr(&o);
+        let wrong = to.trim_start_matches("id=").trim_matches('"');
+        let right = from.trim_start_matches("id=").trim_matches('"');
+        assert!(e.contains(want), "{e}");
+        assert!(
+            e.contains(&format!("typo.svg has '{wrong}'"))
+                && e.contains(&format!("rename it to '{right}'")),
+            "{e}"
+        );
+        assert!(!out.exists());
+    }
+    // A misspelt guides group is drawn as artwork: the run succeeds, with a note.
+    let tgt = dir.path().join("typo.svg");
+    std::fs::write(&tgt, text.replace("id=\"controls\"", "id=\"Controls\"")).unwrap();
+    let o = run(&[
+        os("frame"),
+        os(&src),
+        os(&tgt),
+        os("--at"),
+        os("0.5"),
+        os("-o"),
+        os(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("typo.svg: element 'Controls' is not read as 'controls'"),
+        "{}",
+        stderr(&o)
+    );
+}

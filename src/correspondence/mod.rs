@@ -178,15 +178,16 @@ pub fn correspond_all(
     let twin_of = |f: &ControlCurve, others: &[ControlCurve]| {
         others.iter().find(|g| g.name == f.name).cloned()
     };
+    check_boundaries((src_file, src), (tgt_file, tgt))?;
     let mut curves: Vec<(&ControlCurve, &ControlCurve)> = vec![(&src.boundary, &tgt.boundary)];
     for f in &src.features {
         if twin_of(f, &tgt.features).is_none() {
-            return Err(missing(&f.id, src_file, tgt_file));
+            return Err(missing(&f.id, (src_file, src), (tgt_file, tgt)));
         }
     }
     for f in &tgt.features {
         if twin_of(f, &src.features).is_none() {
-            return Err(missing(&f.id, tgt_file, src_file));
+            return Err(missing(&f.id, (tgt_file, tgt), (src_file, src)));
         }
     }
     for f in &src.features {
@@ -208,10 +209,7 @@ pub fn correspond_all(
             .anchors
             .iter()
             .find(|b| b.name == a.name)
-            .ok_or_else(|| {
-                Error::at(src_file, &a.id, format!("has no twin in {tgt_file}"))
-                    .with_hint(format!("add {} to {tgt_file} or remove it", a.id))
-            })?;
+            .ok_or_else(|| no_twin(&a.id, src_file, (tgt_file, tgt)))?;
         let mut best = (f64::INFINITY, 0);
         for (k, (line, _)) in lines.iter().enumerate() {
             let d = line.project(a.point).0;
@@ -244,10 +242,7 @@ pub fn correspond_all(
     }
     for b in &tgt.anchors {
         if !src.anchors.iter().any(|a| a.name == b.name) {
-            return Err(
-                Error::at(tgt_file, &b.id, format!("has no twin in {src_file}"))
-                    .with_hint(format!("add {} to {src_file} or remove it", b.id)),
-            );
+            return Err(no_twin(&b.id, tgt_file, (src_file, src)));
         }
     }
     // The boundary first: the turn of its part nearest each feature breaks the ties of
@@ -372,9 +367,64 @@ fn local_turn(boundary: &CurvePair, feature: &[Point]) -> f64 {
     orientation::best_fit_rotation(&a, &b)
 }
 
-fn missing(id: &str, here: &str, there: &str) -> Error {
-    Error::at(here, id, format!("{id} is in {here} but not in {there}"))
-        .with_hint(format!("add {id} to {there} or remove it from {here}"))
+/// The error for feature curve `id` of `here` without a twin in `there`; the hint names the
+/// near miss in `there` when it has one (`Feature-eye` for `feature-eye`), or a feature there
+/// without a twin here whose name is a typo of this one.
+fn missing(id: &str, (here, ours): (&str, &Controls), (there, theirs): (&str, &Controls)) -> Error {
+    let e = Error::at(here, id, format!("{id} is in {here} but not in {there}"));
+    if let Some(n) = theirs.near_miss_of(id) {
+        return e.with_hint(n.hint(there));
+    }
+    // A feature of the other file without a twin either, whose name is a typo of this one's
+    // (`feature-vin`).
+    let name = theirs
+        .features
+        .iter()
+        .filter(|g| !ours.features.iter().any(|f| f.name == g.name))
+        .map(|g| g.id.as_str())
+        .find(|g| crate::drawing::resembles(g, id));
+    match name {
+        Some(g) => e.with_hint(format!(
+            "{there} has '{g}' instead: give the two the same name"
+        )),
+        None => e.with_hint(format!("add {id} to {there} or remove it from {here}")),
+    }
+}
+
+/// The error for anchor `id` of `here` without a twin in `there`, naming a near miss.
+fn no_twin(id: &str, here: &str, (there, theirs): (&str, &Controls)) -> Error {
+    let e = Error::at(here, id, format!("has no twin in {there}"));
+    match theirs.near_miss_of(id) {
+        Some(n) => e.with_hint(n.hint(there)),
+        None => e.with_hint(format!("add {id} to {there} or remove it")),
+    }
+}
+
+/// Both drawings have a boundary element, or neither has (both take their viewBox rectangle):
+/// an outline paired with a rectangle is almost always a boundary missing from one file, or
+/// misspelt there, and otherwise surfaces as an unrelated error much later (an anchor off its
+/// curve, a mapping that folds).
+fn check_boundaries(
+    (src_file, src): (&str, &Controls),
+    (tgt_file, tgt): (&str, &Controls),
+) -> Result<()> {
+    let (without, without_file, with_file) =
+        match (src.boundary_from_view_box, tgt.boundary_from_view_box) {
+            (true, false) => (src, src_file, tgt_file),
+            (false, true) => (tgt, tgt_file, src_file),
+            _ => return Ok(()),
+        };
+    let id = &without.boundary.id;
+    let e = Error::input(
+        without_file,
+        format!("has no '{id}' element, but {with_file} has one"),
+    );
+    Err(match without.near_miss_of(id) {
+        Some(n) => e.with_hint(n.hint(without_file)),
+        None => e.with_hint(format!(
+            "give {without_file} a '{id}' too, or remove {with_file}'s to morph the two viewBox rectangles"
+        )),
+    })
 }
 
 /// Replaces the placeholder file names of an input error with the real ones.

@@ -206,6 +206,7 @@ fn controls(boundary: ControlCurve, features: Vec<ControlCurve>, anchors: Vec<An
         features,
         anchors,
         skeleton: Vec::new(),
+        near_misses: Vec::new(),
     }
 }
 
@@ -659,4 +660,51 @@ fn a_similar_copy_corresponds_vertex_to_vertex_even_half_turned() {
             map(*a)
         );
     }
+}
+
+#[test]
+fn a_feature_whose_twin_is_misspelt_names_it() {
+    let tol = tol();
+    let opts = CorrespondenceOptions::default();
+    let b = curve(
+        "boundary",
+        true,
+        vec![p(0., 0.), p(10., 0.), p(10., 8.), p(0., 8.)],
+    );
+    let line = vec![p(2., 2.), p(3., 3.)];
+    let stripe = |n: &str| curve(&format!("feature-stripe-{n}"), false, line.clone());
+    // stripe-3 and stripe-4 (one letter apart) are each other's near names only when
+    // neither has a twin: the matched stripe-1 is never offered.
+    let src = controls(b.clone(), vec![stripe("1"), stripe("3")], vec![]);
+    let tgt = controls(b.clone(), vec![stripe("1"), stripe("4")], vec![]);
+    let e = correspond_all("a.svg", &src, "b.svg", &tgt, &tol, &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("feature-stripe-3 is in a.svg but not in b.svg")
+            && e.contains("b.svg has 'feature-stripe-4' instead"),
+        "{e}"
+    );
+    let tgt = controls(b.clone(), vec![stripe("1")], vec![]);
+    let e = correspond_all("a.svg", &src, "b.svg", &tgt, &tol, &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("hint: add feature-stripe-3 to b.svg"), "{e}");
+    // One file with a boundary, the other with none.
+    let mut plain = controls(b.clone(), vec![], vec![]);
+    plain.boundary_from_view_box = true;
+    let e = correspond_all(
+        "a.svg",
+        &controls(b, vec![], vec![]),
+        "b.svg",
+        &plain,
+        &tol,
+        &opts,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("b.svg: has no 'boundary' element, but a.svg has one"),
+        "{e}"
+    );
 }

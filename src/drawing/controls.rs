@@ -421,6 +421,7 @@ pub(crate) fn read_controls(
         features,
         anchors,
         skeleton,
+        near_misses: super::near_miss::near_misses(root, ids),
     };
     Ok((controls, tol, vb))
 }

@@ -59,6 +59,16 @@ pub struct Controls {
     pub anchors: Vec<Anchor>,
     /// Skeleton chains in document order.
     pub skeleton: Vec<SkeletonChain>,
+    /// Ids that almost follow a convention (`Boundary`, `feature_eye`), in document order: they
+    /// are not control geometry, and the errors and notes about this drawing name them.
+    pub near_misses: Vec<NearMiss>,
+}
+
+impl Controls {
+    /// The near miss that most likely meant `id` (a convention id missing from this drawing).
+    pub fn near_miss_of(&self, id: &str) -> Option<&NearMiss> {
+        self.near_misses.iter().find(|n| n.meant == id)
+    }
 }
 
 /// Id conventions for control geometry (renamed by `--boundary-id`, `--feature-prefix`,
@@ -92,8 +102,11 @@ impl Default for ControlIds {
 
 mod controls;
 mod flatten;
+mod near_miss;
 mod shapes;
 mod xml;
+
+pub use near_miss::{resembles, NearMiss};
 
 use crate::error::{Error, Result};
 use crate::tolerance::Tolerances;
