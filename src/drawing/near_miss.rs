@@ -186,9 +186,11 @@ mod tests {
 
     #[test]
     fn renamed_conventions_are_followed() {
-        let mut ids = ControlIds::default();
-        ids.boundary = "outline".into();
-        ids.feature_prefix = "f:".into();
+        let ids = ControlIds {
+            boundary: "outline".into(),
+            feature_prefix: "f:".into(),
+            ..ControlIds::default()
+        };
         assert_eq!(meant("Outline", &ids).as_deref(), Some("outline"));
         assert_eq!(meant("boundary", &ids), None);
         assert_eq!(meant("f:eye", &ids), None);
