@@ -77,18 +77,18 @@ impl Compatible {
             }
             flags
         });
-        // Fold repair on the parts that need it, curve vertices held.
-        let repaired: Vec<[u32; 3]> = m
-            .parts
-            .iter()
-            .flat_map(|p| {
-                m.triangles
-                    .iter()
-                    .zip(&p.of_triangle)
-                    .filter(|(_, k)| p.repair.contains(k))
-                    .map(|(t, _)| *t)
-            })
-            .collect();
+        // Fold repair, curve vertices held: on the whole mesh of a marked-up drawing, on the
+        // parts that need it in automatic mode.
+        let repaired: Vec<[u32; 3]> = match &m.parts {
+            None => m.triangles.clone(),
+            Some(p) => m
+                .triangles
+                .iter()
+                .zip(&p.of_triangle)
+                .filter(|(_, k)| p.repair.contains(k))
+                .map(|(t, _)| *t)
+                .collect(),
+        };
         let mut on_curve = vec![false; m.source.len()];
         for &v in m.curves.iter().flat_map(|c| &c.vertices) {
             if let Some(f) = on_curve.get_mut(v as usize) {
@@ -107,6 +107,38 @@ impl Compatible {
             },
         )
     }
+}
+
+/// Frames of the disc interpolation of `c` that invert a triangle, after fold repair, at
+/// t = k/64 (k = 1…63): the check that picks the mesh [`build`] returns.
+fn folded_frames(c: &Compatible) -> usize {
+    let Ok(interp) = c.interpolator(Method::Disc) else {
+        return usize::MAX;
+    };
+    let ts: Vec<f64> = (1..64).map(|k| k as f64 / 64.0).collect();
+    interp
+        .frames(&ts)
+        .iter()
+        .filter(|f| crate::mesh::count_inverted(&c.meshes.triangles, f) > 0)
+        .count()
+}
+
+/// Relaxes the mesh the harmonic map produced (the target's, or the source's with
+/// `from_target`) towards the triangle shapes of the triangulated one, curve vertices held
+/// (`mapping::relax_towards`): fewer slivers, so fewer triangles for the interpolation to fold.
+fn relax_mapped(m: &mut CompatibleMeshes, from_target: bool) {
+    let mut held = vec![false; m.source.len()];
+    for &v in m.curves.iter().flat_map(|c| &c.vertices) {
+        if let Some(h) = held.get_mut(v as usize) {
+            *h = true;
+        }
+    }
+    let (rest, mapped) = if from_target {
+        (&m.target, &mut m.source)
+    } else {
+        (&m.source, &mut m.target)
+    };
+    crate::mapping::relax_towards(rest, mapped, &m.triangles, &held);
 }
 
 /// Tolerances common to both drawings: relative to the larger one.
@@ -157,11 +189,24 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
     let fix = |e| name_files(e, source, target, opts.from_target);
     let tri = triangulate(&pairs, &tol, opts.from_target).map_err(fix)?;
     let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;
-    Ok(Compatible {
+    let plain = Compatible {
         meshes,
         pairs,
         stats,
         tolerances: tol,
         area_region: None,
+    };
+    // The harmonic map's own mesh unless its interpolation folds where the relaxed one folds
+    // less (both after fold repair).
+    let folds = folded_frames(&plain);
+    if folds == 0 {
+        return Ok(plain);
+    }
+    let mut relaxed = plain.clone();
+    relax_mapped(&mut relaxed.meshes, opts.from_target);
+    Ok(if folded_frames(&relaxed) < folds {
+        relaxed
+    } else {
+        plain
     })
 }

@@ -38,6 +38,25 @@ pub fn polygon_area(points: &[Point]) -> f64 {
     0.5 * s
 }
 
+/// Area centroid of a simple polygon (its vertex mean when it has no area): the kernel point
+/// that fold repair moves a vertex towards.
+pub fn polygon_centroid(points: &[Point]) -> Point {
+    let n = points.len();
+    // About the first vertex, so that far-away polygons keep their precision.
+    let o = points.first().copied().unwrap_or(Point::ZERO);
+    let (mut area, mut c) = (0.0, Point::ZERO);
+    for i in 0..n {
+        let (p, q) = (points[i] - o, points[(i + 1) % n] - o);
+        let w = p.perp_dot(q);
+        area += w;
+        c += (p + q) * w;
+    }
+    if area == 0.0 || !area.is_finite() {
+        return centroid(points);
+    }
+    o + c / (3.0 * area)
+}
+
 /// Vertex mean of a point set (the "barycenter" of a curve in the barycenter-based shape model,
 /// §5).
 pub fn centroid(points: &[Point]) -> Point {

@@ -11,10 +11,12 @@ mod carried;
 pub mod composite;
 pub mod harmonic;
 pub mod overlay;
+mod relax;
 mod remesh;
 pub mod shape_model;
 mod untangle;
 
 pub use composite::{composite_map, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;
+pub(crate) use relax::relax_towards;
 pub use shape_model::ShapeModel;

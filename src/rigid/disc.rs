@@ -569,6 +569,11 @@ impl DiscRigid {
             }
         }
         self.system.solve(&mut ws.solve, &ws.centroids, out);
+        // Repair first, then the area rule: its uniform scales keep every orientation, and the
+        // area comes out exact whatever the repair moved.
+        if let Some(repair) = &self.repair {
+            repair.apply(out);
+        }
         if let Some(rule) = &self.area {
             rule.apply(
                 t,
@@ -577,9 +582,6 @@ impl DiscRigid {
                 out,
                 &mut ws.areas,
             );
-        }
-        if let Some(repair) = &self.repair {
-            repair.apply(out);
         }
     }
 }

@@ -206,7 +206,12 @@ impl Interpolator {
         }
         if let Some((triangles, fixed)) = setup.repair {
             check_triangles(triangles, n)?;
-            d.repair = Some(Box::new(repair::FoldRepair::new(triangles, n, fixed)));
+            d.repair = Some(Box::new(repair::FoldRepair::new(
+                triangles,
+                n,
+                fixed,
+                Some(source),
+            )));
         }
         Ok(Interpolator {
             kind: Kind::Disc(d),

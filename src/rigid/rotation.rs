@@ -28,7 +28,7 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         .filter(|(a, b)| a != b)
         .map(|&(a, b)| {
             let (a, b) = (a.min(b), a.max(b));
-            ((angles[a as usize] - angles[b as usize]).abs(), a, b)
+            (turn_between(angles[a as usize], angles[b as usize]), a, b)
         })
         .collect();
     order.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
@@ -97,6 +97,16 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         }
     }
     out
+}
+
+/// The angle between two rotations, `|α_a − α_b|` taken modulo 2π into [0, π]: the cost of a
+/// link in the spanning tree. The raw difference (the paper's `|α₁ − α₂|`) makes two
+/// neighbours on either side of ±π look a full turn apart, so the tree joins them through any
+/// disc with a small angle instead, a badly fitted one in a distorted region, and that disc,
+/// as the root of smallest `|α|`, then leaves the two sides on different branches.
+fn turn_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(TAU);
+    d.min(TAU - d)
 }
 
 /// `alpha + 2kπ` for the integer `k` that brings it closest to `reference` (so the difference is

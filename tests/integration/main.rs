@@ -5,6 +5,8 @@ mod common;
 mod compatible;
 mod errors;
 mod export;
+mod folds;
 mod motion;
+mod rounding;
 mod similarity;
 mod skeleton;
