@@ -166,6 +166,17 @@ pub(crate) fn full_disc_graph(discs: &[Vec<u32>]) -> (EdgeList, EdgeList) {
 mod tests {
     use super::*;
 
+    /// Two neighbours either side of ±π and a badly fitted disc of small angle linked to both:
+    /// the tree must join the neighbours directly (0.28 apart), not through the outlier
+    /// (2.9 and 3.1 from them), which as the root of smallest |α| would leave them a full turn
+    /// apart.
+    #[test]
+    fn neighbours_across_the_half_turn_share_a_branch() {
+        let out = consistent_angles(&[3.0, -3.0, 0.1], &[(0, 1), (0, 2), (1, 2)]);
+        assert!((out[0] - out[1]).abs() < 0.3, "{out:?}");
+        assert!((turn_between(3.0, -3.0) - (TAU - 6.0)).abs() < 1e-12);
+    }
+
     #[test]
     fn nearest_branch_takes_the_smallest_correction() {
         assert_eq!(nearest_branch(0.3, 0.1), 0.3);
