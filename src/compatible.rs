@@ -104,6 +104,7 @@ impl Compatible {
                 area_region: self.area_region.as_deref(),
                 together: together.as_deref(),
                 repair: (!repaired.is_empty()).then_some((&repaired[..], &on_curve[..])),
+                repair_curves: m.parts.is_none(),
             },
         )
     }

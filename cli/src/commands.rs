@@ -10,7 +10,7 @@ use crmorph::auto::geometric::MorphingPath;
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
 use crmorph::export::{Easing, Morph, Motion, Playback, Timeline};
-use crmorph::render::{encode_png, FrameOptions};
+use crmorph::render::{encode_png, FrameOptions, Padding};
 use crmorph::rigid::{Interpolator, Method};
 use crmorph::skeleton::{pose_svg, Pose, Skeleton, SkeletonControl};
 
@@ -179,6 +179,46 @@ pub(crate) struct Look {
     /// GIF, which has no partial transparency).
     #[arg(long, value_parser = parse_colour)]
     pub(crate) background: Option<Rgba>,
+    /// What frames show: `fit` grows the source drawing's view to hold every frame of the
+    /// morph, so nothing is cut off (a morph that stays inside keeps the view exactly);
+    /// `source` keeps the source's viewBox, cutting what leaves it.
+    #[arg(long, value_enum, default_value_t = ViewArg::Fit)]
+    pub(crate) view: ViewArg,
+    /// Room around the view on every side: user units (`10`) or a percentage of its larger
+    /// side (`5%`).
+    #[arg(long, default_value = "0", value_parser = parse_padding, allow_hyphen_values = true)]
+    pub(crate) padding: Padding,
+}
+
+/// `--view`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ViewArg {
+    /// The source's view grown to hold the whole morph.
+    Fit,
+    /// Exactly the source's viewBox.
+    Source,
+}
+
+/// Times at which `--view fit` measures what the morph draws.
+const FIT_SAMPLES: usize = 32;
+
+fn parse_padding(s: &str) -> std::result::Result<Padding, String> {
+    let (num, percent) = match s.strip_suffix('%') {
+        Some(n) => (n, true),
+        None => (s, false),
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| "must be a number of user units or a percentage, e.g. 10 or 5%".to_string())?;
+    if !(v.is_finite() && v >= 0.0) || (percent && v > 1000.0) {
+        return Err("must be at least 0 (and at most 1000%)".into());
+    }
+    Ok(if percent {
+        Padding::Percent(v)
+    } else {
+        Padding::Units(v)
+    })
 }
 
 /// Timing of an animation.
@@ -516,9 +556,19 @@ fn build_morph(
     } else {
         paths
     };
-    Ok(Morph::with_morphing_paths(
-        c.meshes, motion, &ss, &ts, opts, paths,
-    )?)
+    let mut morph = Morph::with_morphing_paths(c.meshes, motion, &ss, &ts, opts, paths)?;
+    let drawn = match look.view {
+        ViewArg::Fit => {
+            let ts: Vec<f64> = (0..=FIT_SAMPLES)
+                .map(|k| k as f64 / FIT_SAMPLES as f64)
+                .collect();
+            morph.drawn_bounds(&ts)?
+        }
+        ViewArg::Source => None,
+    };
+    let fitted = morph.frame_options().fitted(drawn, look.padding, look.size);
+    morph.set_frame_options(fitted);
+    Ok(morph)
 }
 
 /// Runs `frame`.

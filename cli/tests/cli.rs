@@ -722,3 +722,96 @@ fn ids_that_almost_follow_a_convention_are_named() {
         stderr(&o)
     );
 }
+
+/// The `viewBox` and pixel size of an SVG crmorph wrote.
+fn view_of(svg: &str) -> ([f64; 4], (u32, u32)) {
+    let attr = |name: &str| {
+        let start = svg.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        svg[start..start + svg[start..].find('"').unwrap()].to_string()
+    };
+    let v: Vec<f64> = attr("viewBox")
+        .split(' ')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    (
+        [v[0], v[1], v[2], v[3]],
+        (
+            attr("width").parse().unwrap(),
+            attr("height").parse().unwrap(),
+        ),
+    )
+}
+
+#[test]
+fn the_view_grows_to_hold_a_morph_that_leaves_it() {
+    // A bar as wide as its 200 × 60 view turns half a turn (the anchor pins its left end to
+    // the right end): at t = ½ it stands upright, 190 tall.
+    let dir = tempfile::tempdir().unwrap();
+    let bar = |fill: &str, ax: u32, ay: u32| {
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 200 60\" width=\"200\" \
+             height=\"60\"><rect id=\"boundary\" x=\"5\" y=\"20\" width=\"190\" height=\"20\" \
+             fill=\"{fill}\"/><g id=\"controls\" style=\"display:none\"><circle \
+             id=\"anchor-tip\" cx=\"{ax}\" cy=\"{ay}\" r=\"1\"/></g></svg>"
+        )
+    };
+    let (s, t) = (dir.path().join("s.svg"), dir.path().join("t.svg"));
+    std::fs::write(&s, bar("#3f51b5", 5, 20)).unwrap();
+    std::fs::write(&t, bar("#e91e63", 195, 40)).unwrap();
+    let frame = |extra: &[&str]| {
+        let out = dir.path().join("f.svg");
+        let mut args = vec![
+            os("frame"),
+            os(&s),
+            os(&t),
+            os("--at"),
+            os("0.5"),
+            os("-o"),
+            os(&out),
+        ];
+        args.extend(extra.iter().map(os));
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        view_of(&std::fs::read_to_string(&out).unwrap())
+    };
+    // Default: fit. The view holds the upright bar (−65 … 125) at the drawing's own scale.
+    let (v, size) = frame(&[]);
+    assert!(v[1] < -65.0 && v[1] + v[3] > 125.0, "{v:?}");
+    assert!(v[3] < 200.0, "only a small margin: {v:?}");
+    assert_eq!((v[0], v[2]), (0.0, 200.0), "{v:?}");
+    assert_eq!(size, (200, v[3].ceil() as u32));
+    // --view source keeps the source's view; --padding adds room on every side.
+    assert_eq!(
+        frame(&["--view", "source"]),
+        ([0.0, 0.0, 200.0, 60.0], (200, 60))
+    );
+    let padded = frame(&["--view", "source", "--padding", "10"]);
+    assert_eq!(padded, ([-10.0, -10.0, 220.0, 80.0], (220, 80)));
+    let (p, _) = frame(&["--view", "source", "--padding", "5%"]);
+    assert_eq!(p, [-10.0, -10.0, 220.0, 80.0]);
+    // The animated SVG shows the same view as its frames.
+    let out = dir.path().join("m.svg");
+    let o = run(&[
+        os("morph"),
+        os(&s),
+        os(&t),
+        os("-o"),
+        os(&out),
+        os("--frames"),
+        os("9"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(view_of(&std::fs::read_to_string(&out).unwrap()), (v, size));
+    let o = run(&[
+        os("frame"),
+        os(&s),
+        os(&t),
+        os("--at"),
+        os("0.5"),
+        os("-o"),
+        os(&out),
+        os("--padding"),
+        os("-1"),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}

@@ -283,7 +283,91 @@ pub struct ImageItem {
     pub pixelated: bool,
 }
 
+/// A bounding box `(min, max)`, or `None` for nothing.
+pub type Bounds = Option<(Point, Point)>;
+
+/// The smallest box holding both.
+pub fn union_bounds(a: Bounds, b: Bounds) -> Bounds {
+    match (a, b) {
+        (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+fn rect_bounds(r: kurbo::Rect) -> Bounds {
+    let (lo, hi) = (Point::new(r.x0, r.y0), Point::new(r.x1, r.y1));
+    (lo.is_finite() && hi.is_finite() && lo.x <= hi.x && lo.y <= hi.y).then_some((lo, hi))
+}
+
+/// The box of `b` under `m` (the box of its transformed corners).
+fn transformed_bounds(b: Bounds, m: Affine) -> Bounds {
+    let (lo, hi) = b?;
+    let corners = [(lo.x, lo.y), (hi.x, lo.y), (hi.x, hi.y), (lo.x, hi.y)]
+        .map(|(x, y)| m * kurbo::Point::new(x, y))
+        .map(|p| Some((Point::new(p.x, p.y), Point::new(p.x, p.y))));
+    corners.into_iter().fold(None, union_bounds)
+}
+
+impl Group {
+    /// The box of what the group draws, in root user space: its children's, strokes with
+    /// their half width (more at miter joins and square caps), images by their corners,
+    /// limited to the clip's box.
+    pub fn bounds(&self) -> Bounds {
+        let mut b: Bounds = None;
+        for c in &self.children {
+            let own = match c {
+                Item::Group(g) => g.bounds(),
+                Item::Path(p) => {
+                    let path = rect_bounds(kurbo::Shape::bounding_box(&p.path));
+                    match (&p.stroke, path) {
+                        (Some(s), Some((lo, hi))) => {
+                            let reach = match (s.join, s.cap) {
+                                (LineJoin::Miter | LineJoin::MiterClip, _) => {
+                                    s.miter_limit.max(1.0)
+                                }
+                                (_, LineCap::Square) => std::f64::consts::SQRT_2,
+                                _ => 1.0,
+                            };
+                            let pen = s.frame.map_or(1.0, |f| {
+                                let [a, b, c, d, _, _] = f.as_coeffs();
+                                (a * a + b * b + c * c + d * d).sqrt()
+                            });
+                            let r = Point::splat(0.5 * s.width * reach * pen);
+                            Some((lo - r, hi + r))
+                        }
+                        _ => path,
+                    }
+                }
+                Item::Image(i) => transformed_bounds(
+                    Some((Point::ZERO, Point::new(i.width, i.height))),
+                    i.transform,
+                ),
+            };
+            b = union_bounds(b, own);
+        }
+        match (&self.clip, b) {
+            (Some(clip), Some((lo, hi))) => {
+                let c = clip
+                    .shapes
+                    .iter()
+                    .map(|s| rect_bounds(kurbo::Shape::bounding_box(&s.path)))
+                    .fold(None, union_bounds)?;
+                let (lo, hi) = (lo.max(c.0), hi.min(c.1));
+                (lo.x <= hi.x && lo.y <= hi.y).then_some((lo, hi))
+            }
+            _ => b,
+        }
+    }
+}
+
 impl Scene {
+    /// The box of everything the scene draws, in the root's user space (after
+    /// [`Scene::root_transform`]): what a view must hold for nothing to be cut off.
+    pub fn bounds(&self) -> Bounds {
+        transformed_bounds(self.root.bounds(), self.root_transform)
+    }
+
     /// Every path and image in paint order, depth first (for tests and statistics).
     pub fn items(&self) -> Vec<&Item> {
         fn walk<'a>(g: &'a Group, out: &mut Vec<&'a Item>) {

@@ -218,6 +218,37 @@ impl Morph {
         }
     }
 
+    /// The box of what the frames at `ts` draw, both drawings' warped artwork where the
+    /// dissolve shows it and the morphing paths (the union over the frames): the view a fit
+    /// must hold.
+    pub fn drawn_bounds(&self, ts: &[f64]) -> Result<crate::artwork::Bounds> {
+        use crate::artwork::union_bounds;
+        let mut b = None;
+        for &t in ts {
+            let v = self.vertices_at(t);
+            for layer in self.layers_at(&v, t, false)? {
+                // A side the dissolve leaves out (the source at t = 1, the target at t = 0)
+                // draws nothing, however far its warp throws it.
+                let (ws, wt) = crate::render::dissolve(t);
+                let seen = |on: bool, s: &Scene| if on { s.bounds() } else { None };
+                b = match &layer {
+                    Owned::Blend(s, g) => {
+                        union_bounds(b, union_bounds(seen(ws > 0.0, s), seen(wt > 0.0, g)))
+                    }
+                    Owned::Over(o) => union_bounds(b, o.bounds()),
+                };
+            }
+        }
+        Ok(b)
+    }
+
+    /// Shows every frame with `frame`'s view, size and background instead (the artwork stays
+    /// bound as it was: change the view, not the scale, or flattening is coarser or finer
+    /// than the quarter pixel it was made for).
+    pub fn set_frame_options(&mut self, frame: FrameOptions) {
+        self.frame = frame;
+    }
+
     /// The compatible meshes.
     pub fn meshes(&self) -> &CompatibleMeshes {
         &self.meshes

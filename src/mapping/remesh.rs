@@ -234,7 +234,7 @@ fn split_long(m: &mut CompatibleMeshes, fixed: usize, max_edge: f64) -> usize {
 pub(crate) fn untangle(m: &mut CompatibleMeshes, fixed: usize) {
     let n = m.source.len();
     let held: Vec<bool> = (0..n).map(|v| v < fixed).collect();
-    let repair = crate::rigid::repair::FoldRepair::new(&m.triangles, n, &held, None);
+    let repair = crate::rigid::repair::FoldRepair::new(&m.triangles, n, &held, None, false);
     repair.apply(&mut m.source);
     repair.apply(&mut m.target);
 }

@@ -1,11 +1,12 @@
 //! Rendering frames: the warped source and target artwork blended at t (end of §3), as a
-//! standalone SVG ([`frame_svg`]) or as pixels ([`frame_pixmap`], [`frame_png`]).
+//! standalone SVG ([`frame_svg`]) or as pixels ([`frame_pixmap`], [`frame_png`]), in the view
+//! of [`FrameOptions`] ([`view`] grows it to hold the whole morph).
 //!
-//! Both outputs show the same thing: the premultiplied linear blend `(1 − t)·S_t + t·T_t` of the
-//! two warped renderings, composited over an optional background; at t = 0 and t = 1 exactly one
+//! Both outputs show the same thing: the two warped renderings cross-dissolved
+//! ([`dissolve`]), composited over an optional background; at t = 0 and t = 1 exactly one
 //! drawing. The raster path renders each side with resvg (through the same SVG writer, parsed back
-//! with usvg, so the two outputs cannot drift apart) and blends pixels; the SVG path expresses the
-//! blend as a filter (see [`svg_frame`]).
+//! with usvg, so the two outputs cannot drift apart) and composites pixels; the SVG path writes
+//! two groups with plain opacity (see [`svg_frame`]).
 
 pub mod animated;
 mod fit;
@@ -13,6 +14,7 @@ mod font;
 mod raster;
 pub mod svg_frame;
 mod tree;
+pub mod view;
 
 pub use animated::{animated_svg, animated_svg_layers};
 pub use raster::{
@@ -20,6 +22,7 @@ pub use raster::{
 };
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
 pub(crate) use tree::fixed;
+pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};
 use crate::geometry::Point;

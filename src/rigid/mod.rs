@@ -59,6 +59,10 @@ pub struct DiscSetup<'a> {
     /// to keep unfolded, and a flag per point for those that must not move (curve vertices).
     /// Default: none.
     pub repair: Option<(&'a [[u32; 3]], &'a [bool])>,
+    /// Whether the repair may, as a last resort, move the flagged points too, where the
+    /// curves themselves fold (a marked-up drawing's features bend a little in that frame).
+    /// Automatic mode keeps its outlines exact and drops a mesh that folds instead.
+    pub repair_curves: bool,
 }
 
 /// Which interpolation to use (CLI: `--method disc|triangle|linear`).
@@ -211,6 +215,7 @@ impl Interpolator {
                 n,
                 fixed,
                 Some(source),
+                setup.repair_curves,
             )));
         }
         Ok(Interpolator {

@@ -43,15 +43,16 @@ pub(crate) struct FoldRepair {
 use crate::mesh::is_positive as positive;
 
 impl FoldRepair {
-    /// The repair of `triangles` over `n` points, of which those flagged in `fixed` never move.
-    /// With `rest` (a valid embedding, e.g. the source mesh) patches re-embed with its
-    /// mean-value weights, and curve vertices may move when nothing else helps; without it,
-    /// with uniform weights, and held vertices stay.
+    /// The repair of `triangles` over `n` points, of which those flagged in `fixed` move only
+    /// with `curves_may_move`, when nothing else straightens a fold. With `rest` (a valid
+    /// embedding, e.g. the source mesh) patches re-embed with its mean-value weights; without
+    /// it, with uniform weights.
     pub(crate) fn new(
         triangles: &[[u32; 3]],
         n: usize,
         fixed: &[bool],
         rest: Option<&[Point]>,
+        curves_may_move: bool,
     ) -> Self {
         let star = crate::mesh::stars(triangles, n);
         let ring = crate::mesh::one_rings(triangles, n);
@@ -69,7 +70,7 @@ impl FoldRepair {
             star,
             ring,
             weights,
-            curves_may_move: rest.is_some(),
+            curves_may_move,
         }
     }
 
@@ -511,7 +512,7 @@ mod tests {
         let tris: Vec<[u32; 3]> = (0..6u32).map(|k| [k, (k + 1) % 6, 6]).collect();
         let mut fixed = vec![true; 7];
         fixed[6] = false;
-        let r = FoldRepair::new(&tris, 7, &fixed, None);
+        let r = FoldRepair::new(&tris, 7, &fixed, None, false);
         let mut frame = pts.clone();
         frame[6] = Point::new(1.5, 0.2);
         assert!(crate::mesh::count_inverted(&tris, &frame) > 0);

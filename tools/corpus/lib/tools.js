@@ -102,10 +102,10 @@ function runCrmorph(pair, o) {
   pair = rel ? { ...pair, src: pair.source, tgt: pair.target } : pair;
   try {
     const N = String(o.frames);
-    const a = crmorphRun(bin, ["morph", pair.src, pair.tgt, "-o", path.join(dir, "anim.svg"), "--frames", N, "--quiet"], opt, true);
+    const a = crmorphRun(bin, ["morph", pair.src, pair.tgt, "-o", path.join(dir, "anim.svg"), "--frames", N, "--view", "source", "--quiet"], opt, true);
     if (a.error) return { error: `morph → .svg: ${a.error}`, stderr: a.stderr };
     const fdir = path.join(dir, "frames");
-    const b = crmorphRun(bin, ["morph", pair.src, pair.tgt, "-o", path.join(dir, "anim2.svg"), "--frames", N, "--frames-dir", fdir, "--frame-format", "svg", "--quiet"], opt, false);
+    const b = crmorphRun(bin, ["morph", pair.src, pair.tgt, "-o", path.join(dir, "anim2.svg"), "--frames", N, "--frames-dir", fdir, "--frame-format", "svg", "--view", "source", "--quiet"], opt, false);
     if (b.error) return { error: `morph --frames-dir: ${b.error}`, stderr: b.stderr };
     const files = fs.readdirSync(fdir).filter((f) => /^frame_\d+\.svg$/.test(f)).sort((x, y) => parseInt(x.slice(6), 10) - parseInt(y.slice(6), 10));
     if (files.length !== o.frames) return { error: `morph --frames-dir wrote ${files.length} frames, not ${o.frames}` };
