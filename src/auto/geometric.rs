@@ -258,11 +258,74 @@ fn push_ring(path: &mut BezPath, pts: &[Point], closed: bool) {
     }
 }
 
+/// `path` with each subpath wound by its nesting depth (the number of other subpaths around
+/// its first point): even depth counter-clockwise, odd depth clockwise, so that the nonzero
+/// rule fills what the even-odd rule filled (exactly so for subpaths that do not cross).
+fn wound_for_nonzero(path: &BezPath) -> BezPath {
+    use kurbo::Shape;
+    let mut subpaths: Vec<BezPath> = Vec::new();
+    for el in path.elements() {
+        if matches!(el, kurbo::PathEl::MoveTo(_)) || subpaths.is_empty() {
+            subpaths.push(BezPath::new());
+        }
+        if let Some(last) = subpaths.last_mut() {
+            last.push(*el);
+        }
+    }
+    let first = |p: &BezPath| match p.elements().first() {
+        Some(kurbo::PathEl::MoveTo(q)) => Some(*q),
+        _ => None,
+    };
+    let mut out = BezPath::new();
+    for (i, sp) in subpaths.iter().enumerate() {
+        let depth = first(sp).map_or(0, |q| {
+            subpaths
+                .iter()
+                .enumerate()
+                .filter(|&(j, other)| j != i && other.winding(q) != 0)
+                .count()
+        });
+        let ccw = sp.area() > 0.0;
+        let keep = ccw == (depth % 2 == 0);
+        let sp = if keep {
+            sp.clone()
+        } else {
+            sp.reverse_subpaths()
+        };
+        for el in sp.elements() {
+            out.push(*el);
+        }
+    }
+    out
+}
+
 impl MorphingPath {
     /// The source path's own geometry in the mesh's space: what the path is at t = 0 when it
     /// alone draws its source path (its frames at t = 0 are the meshes' outline polylines).
+    ///
+    /// Under `fill-rule: evenodd` its subpaths are rewound so that the path, drawn with the
+    /// morphing path's nonzero rule, fills what the source fills: a subpath inside an even
+    /// number of others runs counter-clockwise, inside an odd number clockwise.
     pub fn exact_source_path(&self) -> BezPath {
-        self.source_root * self.source.path.clone()
+        self.exact_source_path_with(&[])
+    }
+
+    /// [`MorphingPath::exact_source_path`] with the source paths of the shapes riding in it
+    /// (`riders`, the items of [`MorphingPath::covers`] on the source side) as further
+    /// subpaths: what the path draws at t = 0 when shapes without a partner shrink into it.
+    pub fn exact_source_path_with(&self, riders: &[&PathItem]) -> BezPath {
+        let mut out = BezPath::new();
+        for item in std::iter::once(&self.source).chain(riders.iter().copied()) {
+            let path = self.source_root * item.path.clone();
+            let path = match &item.fill {
+                Some(f) if f.even_odd => wound_for_nonzero(&path),
+                _ => path,
+            };
+            for el in path.elements() {
+                out.push(*el);
+            }
+        }
+        out
     }
 
     /// The path at `t` whose mesh is `vertices`.

@@ -333,15 +333,27 @@ impl Morph {
 
     /// The layers of the first keyframe (`v` the mesh at t = 0) with the source drawing's own
     /// geometry where the keyframe has a warped copy of it: blended parts as their exact
-    /// source scenes, and each morphing path that alone draws its source path as that path.
+    /// source scenes, and each morphing path that alone draws its source path as that path,
+    /// with the source paths of the shapes riding in it.
     fn exact_source_layers(&self, v: &[Point]) -> Result<Vec<Owned>> {
         let Some(m) = &self.morphing else {
             let (s, g) = self.artwork.at(v)?;
             return Ok(vec![Owned::Blend(s, g)]);
         };
+        let items = m.header.items();
+        // The source paths riding in `p`, or `None` when one is not a plain path.
+        let riders = |p: &MorphingPath| -> Option<Vec<&crate::artwork::PathItem>> {
+            p.covers
+                .0
+                .iter()
+                .map(|&i| match items.get(i) {
+                    Some(crate::artwork::Item::Path(q)) => Some(q),
+                    _ => None,
+                })
+                .collect()
+        };
         let alone = |p: &MorphingPath| {
-            p.covers.0.is_empty()
-                && p.source_item.is_some()
+            p.source_item.is_some()
                 && m.paths
                     .iter()
                     .filter(|q| q.source_item == p.source_item)
@@ -360,7 +372,9 @@ impl Morph {
                         overlay_at(&m.paths[r.clone()], &self.meshes, v, 0.0, &m.header);
                     for (item, p) in scene.root.children.iter_mut().zip(&m.paths[r.clone()]) {
                         if let (crate::artwork::Item::Path(item), true) = (item, alone(p)) {
-                            item.path = p.exact_source_path();
+                            if let Some(r) = riders(p) {
+                                item.path = p.exact_source_path_with(&r);
+                            }
                         }
                     }
                     Ok(Owned::Over(scene))
