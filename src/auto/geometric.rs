@@ -901,6 +901,35 @@ pub(crate) fn in_paint_order(paths: Vec<MorphingPath>) -> Vec<MorphingPath> {
 mod tests {
     use super::*;
 
+    /// A square with a square hole and an island in the hole, all wound the same way (as
+    /// even-odd files often are): rewound, the nonzero rule fills the ring and the island and
+    /// leaves the hole empty.
+    #[test]
+    fn even_odd_subpaths_are_rewound_for_nonzero() {
+        use kurbo::Shape;
+        let square = |c: f64, r: f64| {
+            format!(
+                "M{} {} L{} {} L{} {} L{} {} Z",
+                c - r,
+                c - r,
+                c + r,
+                c - r,
+                c + r,
+                c + r,
+                c - r,
+                c + r
+            )
+        };
+        let d = format!("{} {} {}", square(0.0, 10.0), square(0.0, 6.0), square(0.0, 2.0));
+        let path = BezPath::from_svg(&d).unwrap();
+        let fills = |p: &BezPath, x: f64| p.winding(kurbo::Point::new(x, 0.0)) != 0;
+        assert!(fills(&path, 4.0), "all wound alike: nonzero fills the hole");
+        let w = wound_for_nonzero(&path);
+        assert!(fills(&w, 8.0) && !fills(&w, 4.0) && fills(&w, 0.0));
+        // Already alternating: unchanged.
+        assert_eq!(wound_for_nonzero(&w), w);
+    }
+
     /// A morphing path between items; `paint` tells its colour (the same on both sides).
     fn path(source_item: Option<usize>, target_item: Option<usize>, paint: u8) -> MorphingPath {
         let p = PathItem {
