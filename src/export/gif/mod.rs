@@ -12,7 +12,7 @@
 //! - **One global palette.** Built once from pixels of all frames (exactly, when the animation
 //!   has at most 256 colours; with `NeuQuant` otherwise), so a colour maps to the same index in
 //!   every frame and flat areas do not shimmer as per-frame palettes would.
-//! - **Ordered dithering** ([`dither`]) when the animation has more colours than that. Mapped
+//! - **Ordered dithering** (`dither.rs`) when the animation has more colours than that. Mapped
 //!   to their nearest entries, the colours of a gradient fall into flat bands, and where the
 //!   palette is sparse a band takes a neighbouring hue (a blue → green gradient got a flat
 //!   stripe of one green). Dithered, each pixel shows one of a few entries that average to its
