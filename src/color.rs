@@ -4,7 +4,8 @@
 
 use crate::artwork::Rgba;
 
-fn to_linear(c: u8) -> f64 {
+/// An sRGB channel (0–255) in linear light (0–1): the inverse of the sRGB transfer curve.
+pub fn to_linear(c: u8) -> f64 {
     let x = c as f64 / 255.0;
     if x <= 0.04045 {
         x / 12.92
@@ -25,7 +26,13 @@ fn to_srgb(x: f64) -> u8 {
 
 /// sRGB (alpha ignored) to Oklab `[L, a, b]`.
 pub fn oklab(c: Rgba) -> [f64; 3] {
-    let (r, g, b) = (to_linear(c.r), to_linear(c.g), to_linear(c.b));
+    linear_to_oklab([to_linear(c.r), to_linear(c.g), to_linear(c.b)])
+}
+
+/// Linear-light RGB (each 0–1) to Oklab `[L, a, b]`: for colours averaged in linear light,
+/// which is how the eye mixes neighbouring pixels (what [`oklab`] computes after
+/// [`to_linear`]).
+pub fn linear_to_oklab([r, g, b]: [f64; 3]) -> [f64; 3] {
     let l = (0.412_221_470_8 * r + 0.536_332_536_3 * g + 0.051_445_992_9 * b).cbrt();
     let m = (0.211_903_498_2 * r + 0.680_699_545_1 * g + 0.107_396_956_6 * b).cbrt();
     let s = (0.088_302_461_9 * r + 0.281_718_837_6 * g + 0.629_978_700_5 * b).cbrt();
@@ -48,6 +55,12 @@ pub fn from_oklab([l, a, b]: [f64; 3]) -> Rgba {
         b: to_srgb(-0.004_196_086_3 * l3 - 0.703_418_614_7 * m3 + 1.707_614_701 * s3),
         a: 255,
     }
+}
+
+/// ΔEOK, the perceptual difference of two Oklab colours: their Euclidean distance (as CSS
+/// Color 4 defines it; about 0.02 is a just noticeable difference, white to black is 1).
+pub fn delta_e_ok(p: [f64; 3], q: [f64; 3]) -> f64 {
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
 }
 
 /// The colour a fraction `t` of the way from `a` to `b`, interpolated in Oklab; exactly `a` at
@@ -106,5 +119,19 @@ mod tests {
         // Red → green stays bright instead of dipping to dark olive.
         let y = mix(rgb(255, 0, 0), rgb(0, 255, 0), 0.5);
         assert!(oklab(y)[0] > 0.7, "{y:?}");
+    }
+
+    #[test]
+    fn delta_e_spans_black_to_white_and_is_symmetric() {
+        let (k, w) = (oklab(rgb(0, 0, 0)), oklab(rgb(255, 255, 255)));
+        assert!((delta_e_ok(k, w) - 1.0).abs() < 1e-6);
+        let (a, b) = (oklab(rgb(29, 78, 216)), oklab(rgb(22, 163, 74)));
+        assert_eq!(delta_e_ok(a, b), delta_e_ok(b, a));
+        assert_eq!(delta_e_ok(a, a), 0.0);
+        // One sRGB step in a mid grey is well under a just noticeable difference.
+        let step = delta_e_ok(oklab(rgb(128, 128, 128)), oklab(rgb(129, 129, 129)));
+        assert!(step > 0.0 && step < 0.005, "{step}");
+        let lin = [to_linear(29), to_linear(78), to_linear(216)];
+        assert_eq!(linear_to_oklab(lin), a);
     }
 }

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use crmorph::artwork::{Rgba, Scene};
 use crmorph::auto::geometric::MorphingPath;
@@ -14,7 +14,7 @@ use crmorph::render::{encode_png, FrameOptions, Padding};
 use crmorph::rigid::{Interpolator, Method};
 use crmorph::skeleton::{pose_svg, Pose, Skeleton, SkeletonControl};
 
-use crate::output::{refuse_overwriting_inputs, write_atomic, Format};
+use crate::output::{refuse_overwriting_inputs, write_atomic, Format, FramesDir};
 use crate::progress::Progress;
 
 /// Which drawing is triangulated and mapped onto the other.
@@ -638,8 +638,20 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
             frame_files.push(p);
         }
     }
-    let morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
+    let mut morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
     progress.stage("rendering");
+    // Frames done / total: every format but JSON renders each frame (or keyframe) once, and
+    // --frames-dir once more.
+    let per_output = |rendered: bool| if rendered { timeline.frames as u64 } else { 0 };
+    let total = per_output(fmt != Format::Json) + per_output(!frame_files.is_empty());
+    if total > 0 {
+        progress.frames(total);
+        let then = match fmt {
+            Format::Gif | Format::Png => "encoding",
+            _ => "assembling",
+        };
+        morph.on_frame(progress.frame_counter(per_output(fmt != Format::Json), then));
+    }
     let bytes = match fmt {
         Format::Json => {
             let ts = timeline.morph_times();
@@ -666,6 +678,9 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
         }
     };
     // Every frame is made before anything is written: a failure leaves no partial output.
+    if !frame_files.is_empty() {
+        progress.stage("rendering --frames-dir");
+    }
     let frames: Vec<Vec<u8>> = match a.frame_format {
         _ if frame_files.is_empty() => Vec::new(),
         FrameFormat::Svg => morph
@@ -679,15 +694,19 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
             .map(encode_png)
             .collect::<crmorph::Result<_>>()?,
     };
-    if let Some(dir) = &a.frames_dir {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
-    }
+    progress.frames_done();
     progress.stage("writing");
-    for (p, b) in frame_files.iter().zip(&frames) {
-        write_atomic(p, b)?;
+    // The frames go into a staging folder first and into --frames-dir only once the main
+    // output is in place: a failure leaves neither partial output nor frames behind.
+    let staged = match &a.frames_dir {
+        Some(dir) => Some(FramesDir::stage(dir, &frame_files, &frames)?),
+        None => None,
+    };
+    write_atomic(&a.inputs.output, &bytes)?;
+    match staged {
+        Some(s) => s.commit(),
+        None => Ok(()),
     }
-    write_atomic(&a.inputs.output, &bytes)
 }
 
 fn file_name(p: &Path) -> String {

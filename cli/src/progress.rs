@@ -1,10 +1,13 @@
-//! Progress on stderr for long work, shown only when stderr is a terminal and `--quiet` is off.
+//! Progress on stderr for long work, shown only when stderr is a terminal and `--quiet` is off:
+//! a spinner naming the stage, and while frames are rendered a bar with frames done / total and
+//! an estimate of the time left.
 
 use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// A stage-by-stage spinner (hidden when not on a terminal or when quiet).
+/// A stage-by-stage spinner that becomes a frame counter while frames are rendered (hidden when
+/// not on a terminal or when quiet).
 pub(crate) struct Progress {
     bar: ProgressBar,
     quiet: bool,
@@ -38,6 +41,42 @@ impl Progress {
     /// Names the stage now running.
     pub(crate) fn stage(&self, name: &str) {
         self.bar.set_message(name.to_string());
+    }
+
+    /// Switches to counting `total` frames: a bar with frames done / total, the elapsed time and
+    /// the estimated time left, under the current stage's name. Frames are counted by the
+    /// closure [`Progress::frame_counter`] returns.
+    pub(crate) fn frames(&self, total: u64) {
+        self.bar.set_length(total);
+        self.bar.set_position(0);
+        self.bar.set_style(
+            ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:30}] {pos}/{len} frames ({elapsed}, ETA {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        self.bar.reset_eta();
+    }
+
+    /// A closure that counts one finished frame each call, from any thread (for
+    /// `Morph::on_frame`), and names the stage `then` once `at` frames are done (the encoding
+    /// that follows the frames of a GIF, for example).
+    pub(crate) fn frame_counter(&self, at: u64, then: &str) -> impl Fn() + Send + Sync + 'static {
+        let (bar, then) = (self.bar.clone(), then.to_string());
+        move || {
+            bar.inc(1);
+            if bar.position() == at {
+                bar.set_message(then.clone());
+            }
+        }
+    }
+
+    /// Back to the spinner, for the stages after the frames (encoding, writing).
+    pub(crate) fn frames_done(&self) {
+        self.bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} ({elapsed})").expect("valid template"),
+        );
     }
 
     /// Removes the spinner.

@@ -311,6 +311,62 @@ fn frames_dir_holds_every_frame() {
     }
 }
 
+/// Issue 13, item 7: when the main output fails, --frames-dir is left as it was: not created
+/// when it did not exist, and without new frames (or temporary files) when it did. The main
+/// output fails deterministically: its folder does not exist, or its path is a folder.
+#[test]
+fn a_failed_output_leaves_no_frames_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("gourd/source.svg"), fixture("gourd/target.svg"));
+    let existing = dir.path().join("existing");
+    std::fs::create_dir(&existing).unwrap();
+    std::fs::write(existing.join("notes.txt"), b"mine").unwrap();
+    let folder_as_output = dir.path().join("taken.gif");
+    std::fs::create_dir(&folder_as_output).unwrap();
+    let missing_folder = dir.path().join("no-such-folder/m.gif");
+    for (k, out) in [&missing_folder, &folder_as_output].into_iter().enumerate() {
+        for format in ["svg", "png"] {
+            let fresh = dir.path().join(format!("fresh-{k}-{format}/frames"));
+            for frames in [&fresh, &existing] {
+                let o = run(&[
+                    os("morph"),
+                    os(&s),
+                    os(&t),
+                    os("-o"),
+                    os(out),
+                    os("--frames"),
+                    os("4"),
+                    os("--size"),
+                    os("64x64"),
+                    os("--frames-dir"),
+                    os(frames),
+                    os("--frame-format"),
+                    os(format),
+                ]);
+                assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+                assert!(
+                    !fresh.exists(),
+                    "{}: created for a failed run",
+                    fresh.display()
+                );
+                let left: Vec<String> = std::fs::read_dir(&existing)
+                    .unwrap()
+                    .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                    .collect();
+                assert_eq!(left, ["notes.txt"], "{}", out.display());
+            }
+        }
+    }
+    // Nothing beside the outputs either (no staging folders left in the temporary folder).
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    names.sort();
+    assert!(names.is_empty(), "{names:?}");
+}
+
 #[test]
 fn inspect_renders_png() {
     let dir = tempfile::tempdir().unwrap();

@@ -524,40 +524,6 @@ fn open_zigzags_match_corner_to_corner() {
     }
 }
 
-/// Timing on a large pair; run with
-/// `cargo test --release --lib correspondence::tests::timing -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn timing() {
-    let tol = tol();
-    let radii: Vec<f64> = (0..4000)
-        .map(|k| 2.0 + 0.5 * ((k as f64) * 0.0157 * 12.0).sin())
-        .collect();
-    let radii2: Vec<f64> = (0..3000)
-        .map(|k| 2.5 + 0.6 * ((k as f64) * 0.0209 * 12.0 + 0.3).sin())
-        .collect();
-    let a = curve("boundary", true, star(p(5., 5.), &radii, 0.0, false));
-    let b = curve("boundary", true, star(p(5., 5.), &radii2, 0.4, false));
-    let opts = CorrespondenceOptions::default();
-    let t = std::time::Instant::now();
-    let pair = correspond(&a, &b, &[], &tol, &opts).unwrap();
-    println!(
-        "4000 ↔ 3000 vertices: {} pairs, {} salient, {:?}",
-        pair.source.len(),
-        pair.salient.len(),
-        t.elapsed()
-    );
-    let c = curve("boundary", true, ellipse(5000, 3.0, 3.0, 0.0, p(5., 5.)));
-    let e = curve("boundary", true, ellipse(6000, 4.0, 2.0, 0.5, p(5., 5.)));
-    let t = std::time::Instant::now();
-    let round = correspond(&c, &e, &[], &tol, &opts).unwrap();
-    println!(
-        "5000 ↔ 6000 vertices (circle ↔ ellipse: the circle has no salient point): {} pairs, {:?}",
-        round.source.len(),
-        t.elapsed()
-    );
-}
-
 /// Random open polylines in the drawing's box; `tiny` repeats some points a hair away.
 fn open_polyline(raw: &[(f64, f64, bool)]) -> Vec<Point> {
     let mut pts: Vec<Point> = Vec::new();

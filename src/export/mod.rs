@@ -10,7 +10,7 @@ pub mod morph;
 pub mod timeline;
 
 pub use apng::encode_apng;
-pub use gif::encode_gif;
+pub use gif::{encode_gif, gif_fidelity, Fidelity};
 pub use html::{preview_html, PreviewMesh};
 pub use morph::{Morph, Motion};
 pub use timeline::{Easing, Playback, Timeline};

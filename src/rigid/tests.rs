@@ -272,10 +272,12 @@ fn spike_on_well_shaped_triangles(
 /// A grid with a column of needles (width 0.001, height 1) as a compatible triangulation without
 /// optimization produces (Fig. 13); the target opens them to width 0.02 and slides their apexes
 /// along the column, on top of a smooth bend. The needles' affine maps are huge shears whose polar
-/// rotations disagree with their neighbours': the triangle baseline, in which every triangle pulls
-/// equally, drags the well-shaped neighbours past their end distortion; the disc method does not.
+/// rotations disagree with their neighbours'. The disc method keeps the well-shaped neighbours
+/// within their end distortion (what it guarantees, asserted). The triangle baseline, in which
+/// every triangle pulls equally, is measured for comparison, not asserted to fail: it dragged
+/// them to about 1.1 times their end distortion when this was written.
 #[test]
-fn thin_triangles_make_the_triangle_baseline_spike_not_the_disc_method() {
+fn thin_triangles_do_not_make_the_disc_method_spike() {
     let (mut src, tris) = grid(13, 7, 1.0);
     let mut pre = src.clone();
     for j in 0..7 {
@@ -289,7 +291,11 @@ fn thin_triangles_make_the_triangle_baseline_spike_not_the_disc_method() {
     let disc = spike_on_well_shaped_triangles(Method::Disc, &src, &tgt, &tris);
     let tri = spike_on_well_shaped_triangles(Method::Triangle, &src, &tgt, &tris);
     assert!(disc <= 1.0, "disc method spikes: {disc}");
-    assert!(tri > 1.05, "triangle baseline should spike: {tri}");
+    println!("spike on well-shaped triangles: disc {disc:.4}, triangle baseline {tri:.4}");
+    assert!(
+        tri.is_finite() && tri >= 0.0,
+        "the baseline is measurable: {tri}"
+    );
 }
 
 /// A stretch ×2 across and ×½ along, turned by 2.5 rad: the end areas are equal, so the disc
@@ -471,11 +477,13 @@ proptest! {
 
 /// The needle column of the test above made ever thinner, down to a width of 1e-10 of the grid
 /// spacing — what nearly collinear curve vertices give a triangulation without optimization
-/// (Fig. 13). The triangle baseline inverts every triangle's edge matrix, so its system's
-/// condition grows like 1/width²: measured, its t = 0 frame is off by 1.3e-8 at width 1e-3,
-/// 8.9e-3 at 1e-6 and 0.69 (5 % of the diagonal) at 1e-7, and it cannot be factored at 1e-8.
-/// The disc method never looks at triangles: exact ends (≤ 7e-14), no inverted triangle and no
-/// spike on well-shaped triangles at every width.
+/// (Fig. 13). The disc method never looks at triangles: exact ends (≤ 7e-14) and no spike on
+/// well-shaped triangles at every width, asserted. The triangle baseline inverts every
+/// triangle's edge matrix, so its system's condition grows like 1/width²; its end error is
+/// measured and printed, not asserted to grow (it was 1.3e-8 at width 1e-3, 8.9e-3 at 1e-6 and
+/// 0.69, 5 % of the diagonal, at 1e-7, and it could not be factored at 1e-8). Asserted of it
+/// only what a better baseline would still meet: exact ends on the widest needles, and a
+/// refusal, when it refuses, that is an input error pointing to `--method disc`.
 #[test]
 fn the_disc_method_is_insensitive_to_triangle_quality() {
     let mut triangle_errors = Vec::new();
@@ -520,12 +528,15 @@ fn the_disc_method_is_insensitive_to_triangle_quality() {
             },
         );
     }
-    // The baseline is exact only for reasonable triangles, and falls apart on needles.
-    assert!(triangle_errors[0] < 1e-6 * diag(&grid(13, 7, 1.0).0));
-    assert!(
-        triangle_errors[2..]
-            .iter()
-            .all(|&e| e > 1e-3 * diag(&grid(13, 7, 1.0).0)),
-        "{triangle_errors:?}"
-    );
+    let diagonal = diag(&grid(13, 7, 1.0).0);
+    for (exponent, e) in [3, 5, 7, 8, 10].iter().zip(&triangle_errors) {
+        let figure = if e.is_finite() {
+            format!("{:.2e} of the diagonal", e / diagonal)
+        } else {
+            "cannot be factored".to_string()
+        };
+        println!("needle width 1e-{exponent}: triangle baseline end error {figure}");
+    }
+    // On the widest needles (1e-3) the baseline is as exact as the disc method.
+    assert!(triangle_errors[0] < 1e-6 * diagonal, "{triangle_errors:?}");
 }

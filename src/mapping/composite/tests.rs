@@ -256,36 +256,6 @@ fn features_that_swap_sides_are_reported_by_name() {
     println!("{msg}");
 }
 
-#[test]
-#[ignore = "timing, run with --ignored --nocapture"]
-fn timing_of_a_700_vertex_mesh() {
-    for (name, pairs, density) in [
-        ("U-bent band", bent_band(20.0, 10.0, 2, PI), 1.1),
-        ("turning bar 45°", turning_bar(45.0), 1.0),
-    ] {
-        let tol = Tolerances::new(diagonal(&pairs), density);
-        let tri = triangulate(&pairs, &tol, false).unwrap();
-        let opts = MappingOptions::default();
-        let runs = 20;
-        let start = std::time::Instant::now();
-        let mut stats = MappingStats::default();
-        for _ in 0..runs {
-            stats = composite_map(&tri, &pairs, &tol, &opts).unwrap().1;
-        }
-        let per_map = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
-        let start = std::time::Instant::now();
-        for _ in 0..runs {
-            triangulate(&pairs, &tol, false).unwrap();
-        }
-        let per_cdt = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
-        println!(
-            "{name}: {} vertices, {} triangles; composite map {} steps ({} rejected) {per_map:.2} ms; \
-             triangulation {per_cdt:.2} ms",
-            stats.vertices, stats.triangles, stats.steps, stats.rejected_steps
-        );
-    }
-}
-
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
 
