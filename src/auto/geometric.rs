@@ -920,7 +920,12 @@ mod tests {
                 c + r
             )
         };
-        let d = format!("{} {} {}", square(0.0, 10.0), square(0.0, 6.0), square(0.0, 2.0));
+        let d = format!(
+            "{} {} {}",
+            square(0.0, 10.0),
+            square(0.0, 6.0),
+            square(0.0, 2.0)
+        );
         let path = BezPath::from_svg(&d).unwrap();
         let fills = |p: &BezPath, x: f64| p.winding(kurbo::Point::new(x, 0.0)) != 0;
         assert!(fills(&path, 4.0), "all wound alike: nonzero fills the hole");
