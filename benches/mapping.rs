@@ -7,106 +7,11 @@
 use std::f64::consts::PI;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use crmorph::correspondence::CurvePair;
-use crmorph::geometry::{bounding_box, Point};
+use crmorph::geometry::bounding_box;
+use crmorph::mapping::samples::{bent_band, turning_bar};
 use crmorph::mapping::{composite_map, MappingOptions};
 use crmorph::tolerance::Tolerances;
 use crmorph::triangulation::triangulate;
-use crmorph::CurveKind;
-
-fn p(x: f64, y: f64) -> Point {
-    Point::new(x, y)
-}
-
-/// A curve pair whose target is its source (moved later).
-fn pair(id: &str, closed: bool, pts: Vec<Point>) -> CurvePair {
-    CurvePair {
-        id: id.into(),
-        kind: if id == "boundary" {
-            CurveKind::Boundary
-        } else {
-            CurveKind::Feature
-        },
-        closed,
-        target: pts.clone(),
-        source: pts,
-        salient: vec![],
-    }
-}
-
-/// The closed polygon through `corners` with edges of at most `max_edge`.
-fn resampled(corners: &[Point], max_edge: f64) -> Vec<Point> {
-    let n = corners.len();
-    (0..n)
-        .flat_map(|i| {
-            let (a, b) = (corners[i], corners[(i + 1) % n]);
-            let k = (a.distance(b) / max_edge).ceil().max(1.0) as usize;
-            (0..k).map(move |j| a.lerp(b, j as f64 / k as f64))
-        })
-        .collect()
-}
-
-/// `n` points on a circle, counter-clockwise.
-fn circle(c: Point, r: f64, n: usize) -> Vec<Point> {
-    (0..n)
-        .map(|k| c + r * Point::from_angle(k as f64 / n as f64 * std::f64::consts::TAU))
-        .collect()
-}
-
-/// A band `len × height` with a midline feature and a small closed feature, bent by `bend`
-/// radians around a centre so that its midline keeps its length.
-fn bent_band(len: f64, height: f64, per_unit: usize, bend: f64) -> Vec<CurvePair> {
-    let n = (len * per_unit as f64) as usize;
-    let h = height / 2.0;
-    let b = resampled(
-        &[p(0., 0.), p(len, 0.), p(len, height), p(0., height)],
-        1.0 / per_unit as f64,
-    );
-    let mid: Vec<Point> = (0..=n)
-        .map(|k| p(0.5 + (len - 1.0) * k as f64 / n as f64, h))
-        .collect();
-    let mut pairs = vec![
-        pair("boundary", true, b),
-        pair(
-            "feature-dot",
-            true,
-            circle(p(len * 0.3, h / 2.0), 0.25 * h, 10),
-        ),
-        pair("feature-mid", false, mid),
-    ];
-    let radius = len / bend;
-    let f = |q: Point| {
-        let (r, a) = (radius + h - q.y, q.x / radius - PI / 2.0);
-        p(r * a.cos(), r * a.sin())
-    };
-    for pc in &mut pairs {
-        pc.target = pc.source.iter().map(|q| f(*q)).collect();
-    }
-    pairs
-}
-
-/// A 10 × 10 square whose 4 × 1 bar feature turns by `deg` degrees about the centre.
-fn turning_bar(deg: f64) -> Vec<CurvePair> {
-    let mut pairs = vec![
-        pair(
-            "boundary",
-            true,
-            resampled(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 0.4),
-        ),
-        pair(
-            "feature-bar",
-            true,
-            resampled(&[p(3., 4.5), p(7., 4.5), p(7., 5.5), p(3., 5.5)], 0.25),
-        ),
-    ];
-    let r = Point::from_angle(deg.to_radians());
-    pairs[1].target = pairs[1]
-        .source
-        .iter()
-        .map(|q| p(5., 5.) + r.rotate(*q - p(5., 5.)))
-        .collect();
-    pairs
-}
 
 fn mapping(c: &mut Criterion) {
     let mut g = c.benchmark_group("composite_map");

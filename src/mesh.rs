@@ -213,6 +213,17 @@ pub fn one_rings(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
     rings
 }
 
+/// A regular hexagon of unit radius about its centre (vertex 6), as six counter-clockwise
+/// triangles: the smallest star, for the tests of what moves a vertex in its star.
+#[cfg(test)]
+pub(crate) fn hexagon_fan() -> (Vec<Point>, Vec<[u32; 3]>) {
+    let mut pts: Vec<Point> = (0..6)
+        .map(|k| Point::from_angle(std::f64::consts::TAU * k as f64 / 6.0))
+        .collect();
+    pts.push(Point::ZERO);
+    (pts, (0..6u32).map(|k| [k, (k + 1) % 6, 6]).collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -136,18 +136,27 @@ impl Harmonic {
         })
     }
 
-    /// Computes the harmonic map with the cotangent weights of `metric` (the current vertex
-    /// positions): fixed entries of `out` are read as the prescribed positions, free entries are
-    /// overwritten with the solution.
-    pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+    /// Checks the vertex counts and computes the cotangent weights of `metric`; the symbolic
+    /// factorization to solve with, or `None` when no vertex is free (nothing to solve).
+    fn weigh(&mut self, metric: &[Point], out: &[Point]) -> Result<Option<SymbolicLlt<usize>>> {
         let n = self.free_index.len();
         if metric.len() != n || out.len() != n {
             return Err(Error::internal("harmonic map: wrong vertex count"));
         }
         let Some(symbolic) = self.symbolic.clone() else {
-            return Ok(());
+            return Ok(None);
         };
         self.cotangent_weights(metric);
+        Ok(Some(symbolic))
+    }
+
+    /// Computes the harmonic map with the cotangent weights of `metric` (the current vertex
+    /// positions): fixed entries of `out` are read as the prescribed positions, free entries are
+    /// overwritten with the solution.
+    pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+        let Some(symbolic) = self.weigh(metric, out)? else {
+            return Ok(());
+        };
         if self.weights.iter().any(|w| !w.is_finite()) {
             return Err(Error::internal(
                 "harmonic map: degenerate triangle in the metric",
@@ -171,14 +180,9 @@ impl Harmonic {
     /// convex-combination map, which is one-to-one onto a convex boundary by Tutte's theorem
     /// (Floater's form for positive weights), and as close to harmonic as the floor allows.
     pub fn solve_convex(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
-        let n = self.free_index.len();
-        if metric.len() != n || out.len() != n {
-            return Err(Error::internal("harmonic map: wrong vertex count"));
-        }
-        let Some(symbolic) = self.symbolic.clone() else {
+        let Some(symbolic) = self.weigh(metric, out)? else {
             return Ok(());
         };
-        self.cotangent_weights(metric);
         let mean = self
             .weights
             .iter()

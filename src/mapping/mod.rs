@@ -13,6 +13,7 @@ pub mod harmonic;
 pub mod overlay;
 mod relax;
 mod remesh;
+pub mod samples;
 pub mod shape_model;
 mod untangle;
 

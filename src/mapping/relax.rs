@@ -116,14 +116,7 @@ mod tests {
     /// vertices stay.
     #[test]
     fn a_pushed_centre_returns_to_similar_triangles() {
-        let mut rest: Vec<Point> = (0..6)
-            .map(|k| {
-                let a = std::f64::consts::TAU * k as f64 / 6.0;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
-        rest.push(Point::ZERO);
-        let tris: Vec<[u32; 3]> = (0..6u32).map(|k| [k, (k + 1) % 6, 6]).collect();
+        let (rest, tris) = crate::mesh::hexagon_fan();
         // The mapped mesh: the same hexagon turned and scaled, its centre pushed aside.
         let turn = |p: Point| Point::new(2.0 * p.y, -2.0 * p.x) + Point::new(5.0, 1.0);
         let mut mapped: Vec<Point> = rest.iter().map(|&p| turn(p)).collect();

@@ -502,14 +502,7 @@ mod tests {
     /// A fan around a centre vertex pushed out of its star: the repair brings it back.
     #[test]
     fn a_pushed_out_vertex_returns_into_its_star() {
-        let mut pts: Vec<Point> = (0..6)
-            .map(|k| {
-                let a = std::f64::consts::TAU * k as f64 / 6.0;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
-        pts.push(Point::ZERO);
-        let tris: Vec<[u32; 3]> = (0..6u32).map(|k| [k, (k + 1) % 6, 6]).collect();
+        let (pts, tris) = crate::mesh::hexagon_fan();
         let mut fixed = vec![true; 7];
         fixed[6] = false;
         let r = FoldRepair::new(&tris, 7, &fixed, None, false);

@@ -1,5 +1,6 @@
 use super::*;
 use crate::geometry::{point_segment_distance, triangle_area};
+pub(crate) use crate::mapping::samples::{circle, pair, resampled};
 use crate::mesh::{count_inverted, edges};
 
 fn p(x: f64, y: f64) -> Point {
@@ -15,42 +16,6 @@ pub(crate) fn subdivided(corners: &[Point], per_side: usize) -> Vec<Point> {
             (0..per_side).map(move |k| a.lerp(b, k as f64 / per_side as f64))
         })
         .collect()
-}
-
-/// A closed polyline through `corners`, each side split into edges no longer than `max_edge`.
-pub(crate) fn resampled(corners: &[Point], max_edge: f64) -> Vec<Point> {
-    let n = corners.len();
-    (0..n)
-        .flat_map(|i| {
-            let (a, b) = (corners[i], corners[(i + 1) % n]);
-            let k = (a.distance(b) / max_edge).ceil().max(1.0) as usize;
-            (0..k).map(move |j| a.lerp(b, j as f64 / k as f64))
-        })
-        .collect()
-}
-
-pub(crate) fn circle(c: Point, r: f64, n: usize) -> Vec<Point> {
-    (0..n)
-        .map(|k| {
-            let a = k as f64 / n as f64 * std::f64::consts::TAU;
-            c + r * Point::new(a.cos(), a.sin())
-        })
-        .collect()
-}
-
-pub(crate) fn pair(id: &str, closed: bool, pts: Vec<Point>) -> CurvePair {
-    CurvePair {
-        id: id.into(),
-        kind: if id == "boundary" {
-            CurveKind::Boundary
-        } else {
-            CurveKind::Feature
-        },
-        closed,
-        target: pts.clone(),
-        source: pts,
-        salient: vec![],
-    }
 }
 
 fn square_with_features() -> Vec<CurvePair> {

@@ -1,7 +1,8 @@
 use super::*;
 use crate::geometry::bounding_box;
+use crate::mapping::samples::{bent_band, circle, pair, turning_bar};
 use crate::mesh::sanity_check;
-use crate::triangulation::tests::{circle, pair, resampled, subdivided};
+use crate::triangulation::tests::subdivided;
 use crate::triangulation::triangulate;
 use std::f64::consts::PI;
 
@@ -55,38 +56,6 @@ fn bent_strip(len: f64, per_unit: usize, bend: f64) -> Vec<CurvePair> {
     bent_band(len, 2.0, per_unit, bend)
 }
 
-/// A band `len × height` with a midline feature and a small closed feature, bent by `bend`
-/// radians around a centre so that its midline keeps its length.
-fn bent_band(len: f64, height: f64, per_unit: usize, bend: f64) -> Vec<CurvePair> {
-    let n = (len * per_unit as f64) as usize;
-    let h = height / 2.0;
-    let b = resampled(
-        &[p(0., 0.), p(len, 0.), p(len, height), p(0., height)],
-        1.0 / per_unit as f64,
-    );
-    let mid: Vec<Point> = (0..=n)
-        .map(|k| p(0.5 + (len - 1.0) * k as f64 / n as f64, h))
-        .collect();
-    let mut pairs = vec![
-        pair("boundary", true, b),
-        pair(
-            "feature-dot",
-            true,
-            circle(p(len * 0.3, h / 2.0), 0.25 * h, 10),
-        ),
-        pair("feature-mid", false, mid),
-    ];
-    let radius = len / bend;
-    let f = |q: Point| {
-        let (r, a) = (radius + h - q.y, q.x / radius - PI / 2.0);
-        p(r * a.cos(), r * a.sin())
-    };
-    for pc in &mut pairs {
-        pc.target = pc.source.iter().map(|q| f(*q)).collect();
-    }
-    pairs
-}
-
 #[test]
 fn a_similar_target_gives_the_similar_mesh() {
     for deg in [30.0f64, 179.0, 181.0, 270.0] {
@@ -121,29 +90,6 @@ fn a_strip_bent_into_a_u_maps_without_flips() {
     let (m, stats) = map(&pairs, false).unwrap();
     assert_healthy(&m, &pairs);
     assert!(!stats.linear_path);
-}
-
-/// A square with a bar in the middle that turns by `deg` degrees in the target.
-fn turning_bar(deg: f64) -> Vec<CurvePair> {
-    let mut pairs = vec![
-        pair(
-            "boundary",
-            true,
-            resampled(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 0.4),
-        ),
-        pair(
-            "feature-bar",
-            true,
-            resampled(&[p(3., 4.5), p(7., 4.5), p(7., 5.5), p(3., 5.5)], 0.25),
-        ),
-    ];
-    let r = Point::from_angle(deg.to_radians());
-    pairs[1].target = pairs[1]
-        .source
-        .iter()
-        .map(|q| p(5., 5.) + r.rotate(*q - p(5., 5.)))
-        .collect();
-    pairs
 }
 
 #[test]
