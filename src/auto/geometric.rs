@@ -311,7 +311,7 @@ impl MorphingPath {
     }
 
     /// [`MorphingPath::exact_source_path`] with the source paths of the shapes riding in it
-    /// (`riders`, the items of [`MorphingPath::covers`] on the source side) as further
+    /// (`riders`, the source items the path covers besides its own) as further
     /// subpaths: what the path draws at t = 0 when shapes without a partner shrink into it.
     pub fn exact_source_path_with(&self, riders: &[&PathItem]) -> BezPath {
         let mut out = BezPath::new();
