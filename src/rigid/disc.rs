@@ -134,7 +134,9 @@ impl LocalTransforms {
         };
         for &(i, j) in &undirected {
             if t.edges.last() == Some(&(i, j)) {
-                *t.weight.last_mut().expect("weight per edge") += 1.0;
+                if let Some(w) = t.weight.last_mut() {
+                    *w += 1.0;
+                }
                 continue;
             }
             let d = source[j as usize] - source[i as usize];
