@@ -43,22 +43,11 @@ fn screenshot(chrome: &Path, page: &Path, size: (u32, u32), work: &Path) -> Pixm
         page.file_stem().unwrap().to_string_lossy()
     ));
     let profile = tempfile::tempdir().unwrap();
-    let out = Command::new(chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-background-networking",
-            "--no-first-run",
-            "--hide-scrollbars",
-            "--force-device-scale-factor=1",
-        ])
-        .arg(format!("--user-data-dir={}", profile.path().display()))
-        .arg(format!("--window-size={},{}", size.0, size.1))
-        .arg(format!("--screenshot={}", shot.display()))
-        .arg(format!("file://{}", page.display()))
-        .output()
-        .expect("Chromium runs");
+    let out =
+        crate::tools::chromium_screenshot(&mut Command::new(chrome), profile.path(), size, &shot)
+            .arg(format!("file://{}", page.display()))
+            .output()
+            .expect("Chromium runs");
     assert!(
         shot.exists(),
         "Chromium wrote no screenshot: {}",

@@ -134,18 +134,7 @@ impl Renderer<'_> {
                         .arg("--screenshot")
                         .arg(&out);
                 } else {
-                    cmd.args([
-                        "--headless",
-                        "--no-sandbox",
-                        "--disable-gpu",
-                        "--disable-background-networking",
-                        "--no-first-run",
-                        "--hide-scrollbars",
-                        "--force-device-scale-factor=1",
-                    ])
-                    .arg(format!("--user-data-dir={}", profile.path().display()))
-                    .arg(format!("--window-size={},{}", size.0, size.1))
-                    .arg(format!("--screenshot={}", out.display()));
+                    crate::tools::chromium_screenshot(&mut cmd, profile.path(), size, &out);
                 }
                 let o = cmd
                     .arg(format!("file://{}", page.display()))

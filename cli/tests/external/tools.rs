@@ -110,3 +110,26 @@ pub(crate) fn firefox(tests: usize) -> Found {
         tests,
     )
 }
+
+/// The arguments that make headless Chromium screenshot a page at `size` pixels into `out`,
+/// with a fresh profile in `profile`: no sandbox, GPU or background network, no scrollbars, one
+/// device pixel per CSS pixel. The page's URL goes last.
+pub(crate) fn chromium_screenshot<'a>(
+    cmd: &'a mut Command,
+    profile: &Path,
+    size: (u32, u32),
+    out: &Path,
+) -> &'a mut Command {
+    cmd.args([
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-background-networking",
+        "--no-first-run",
+        "--hide-scrollbars",
+        "--force-device-scale-factor=1",
+    ])
+    .arg(format!("--user-data-dir={}", profile.display()))
+    .arg(format!("--window-size={},{}", size.0, size.1))
+    .arg(format!("--screenshot={}", out.display()))
+}
