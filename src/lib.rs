@@ -37,6 +37,7 @@ pub mod drawing;
 pub mod error;
 pub mod export;
 pub mod geometry;
+pub mod input;
 pub mod inspect;
 pub mod json;
 pub mod mapping;

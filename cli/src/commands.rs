@@ -74,6 +74,8 @@ pub(crate) struct Inputs {
     /// Which drawing to triangulate and map onto the other.
     #[arg(long, value_enum, default_value_t = From::Source)]
     pub(crate) from: From,
+    #[command(flatten)]
+    pub(crate) safety: crate::policy::Safety,
 }
 
 fn positive_f64(s: &str) -> std::result::Result<f64, String> {
@@ -383,6 +385,7 @@ fn read_options(inputs: &Inputs) -> ReadOptions {
     let mut opts = ReadOptions::default();
     opts.ids = ids;
     opts.density = inputs.density;
+    opts.policy = inputs.safety.policy();
     opts
 }
 

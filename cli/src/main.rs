@@ -7,6 +7,7 @@ mod commands;
 mod demo;
 mod docs;
 mod output;
+mod policy;
 mod progress;
 
 use std::process::ExitCode;

@@ -119,6 +119,9 @@ pub struct ReadOptions {
     pub ids: ControlIds,
     /// Vertex density multiplier (2.0 = twice as many vertices per unit length). Default: 1.0.
     pub density: f64,
+    /// What may be read and how much work a drawing may cause. Default: no local files, the
+    /// default [`Limits`](crate::input::Limits).
+    pub policy: crate::input::InputPolicy,
 }
 
 impl Default for ReadOptions {
@@ -126,6 +129,7 @@ impl Default for ReadOptions {
         ReadOptions {
             ids: ControlIds::default(),
             density: 1.0,
+            policy: crate::input::InputPolicy::default(),
         }
     }
 }
