@@ -37,9 +37,19 @@ pub struct InputError {
 /// `s` safe to print on a terminal: control characters (and the other invisible formatting
 /// characters a hostile file may put in an id) as `\u{…}` escapes, at most 200 characters.
 pub fn printable(s: &str) -> String {
+    escape(s, 200)
+}
+
+/// A path as a file name for messages: lossy UTF-8, with control characters escaped as in
+/// [`printable`] (but never shortened).
+pub fn printable_path(path: &std::path::Path) -> String {
+    escape(&path.to_string_lossy(), usize::MAX)
+}
+
+fn escape(s: &str, max_chars: usize) -> String {
     let mut out = String::with_capacity(s.len());
     for (k, c) in s.chars().enumerate() {
-        if k == 200 {
+        if k == max_chars {
             out.push('…');
             break;
         }

@@ -409,6 +409,9 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
         for n in &d.controls.near_misses {
             progress.note(&format!("{}: {}", d.file, n.note()));
         }
+        for n in &d.notes {
+            progress.note(n);
+        }
     }
     let mut opts = MorphOptions::default();
     opts.from_target = inputs.from == From::Target;
@@ -425,15 +428,9 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
     Ok((s, t, c, Vec::new()))
 }
 
-/// A drawing's artwork (its resources resolved beside the file).
+/// A drawing's artwork, its images read under the drawing's input policy.
 fn scene(d: &Drawing) -> Result<Scene> {
-    let dir = Path::new(&d.file).parent().map(|p| p.to_path_buf());
-    Ok(Scene::from_svg_in(
-        &d.file,
-        &d.svg,
-        "controls",
-        dir.as_deref(),
-    )?)
+    Ok(Scene::from_drawing(d)?)
 }
 
 /// The interpolator of `method` for the meshes (the disc method keeping the area of

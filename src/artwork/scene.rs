@@ -11,6 +11,7 @@ use super::{
 };
 use crate::error::{Error, Result};
 use crate::geometry::Point;
+use crate::input::InputPolicy;
 use kurbo::{Affine, BezPath};
 use std::path::Path;
 use std::str::FromStr;
@@ -86,13 +87,16 @@ fn set_generic_families(db: &mut usvg::fontdb::Database) {
     }
 }
 
-/// usvg parse options for reading a drawing: the system fonts (loaded once per process, and only
-/// for drawings with text) and the directory relative image references resolve against.
-fn usvg_options(svg: &str, resources_dir: Option<&Path>) -> usvg::Options<'static> {
-    let mut o = usvg::Options {
-        resources_dir: resources_dir.map(Path::to_path_buf),
-        ..usvg::Options::default()
-    };
+/// usvg parse options for reading a drawing: images resolved under `policy`
+/// ([`crate::input::usvg_options`]) and the system fonts (loaded once per process, and only for
+/// drawings with text).
+fn usvg_options(
+    file: &str,
+    svg: &str,
+    dir: Option<&Path>,
+    policy: &InputPolicy,
+) -> usvg::Options<'static> {
+    let mut o = crate::input::usvg_options(file, dir, policy);
     if svg.contains("<text") || svg.contains(":text") {
         (o.fontdb, o.font_family) = fonts();
     }
@@ -198,22 +202,51 @@ fn view_box_transform(
 impl Scene {
     /// Reads the artwork of an SVG drawing: every visible element in paint order except the
     /// subtree of the group with id `guides_group_id` (the `controls` guides, DESIGN.md §1).
-    /// `file` names the drawing in errors. Unsupported features are reported with
-    /// `log::warn!` (see the [module docs](super)).
+    /// `file` names the drawing in errors. Only data-URI images are read, and the text is
+    /// prepared under the default limits ([`Scene::from_svg_with`]). Unsupported features are
+    /// reported with `log::warn!` (see the [module docs](super)).
     pub fn from_svg(file: &str, svg: &str, guides_group_id: &str) -> Result<Scene> {
-        Self::from_svg_in(file, svg, guides_group_id, None)
+        Self::from_svg_with(file, svg, guides_group_id, None, &InputPolicy::default())
     }
 
-    /// [`Scene::from_svg`] with relative image references (`<image href="a.png">`) resolved
-    /// against `resources_dir` (normally the drawing's directory) instead of the working
-    /// directory.
+    /// [`Scene::from_svg`] that also reads the local images inside `resources_dir` (normally
+    /// the drawing's folder), relative references resolving against it.
     pub fn from_svg_in(
         file: &str,
         svg: &str,
         guides_group_id: &str,
         resources_dir: Option<&Path>,
     ) -> Result<Scene> {
-        let tree = usvg::Tree::from_str(svg, &usvg_options(svg, resources_dir))
+        let mut policy = InputPolicy::default();
+        if let Some(dir) = resources_dir {
+            policy.local_files = crate::input::LocalFiles::Within(dir.to_path_buf());
+        }
+        Self::from_svg_with(file, svg, guides_group_id, resources_dir, &policy)
+    }
+
+    /// The artwork of a drawing read with [`Drawing::open`](crate::drawing::Drawing::open) or
+    /// `from_str`, under the drawing's own policy and folder.
+    pub fn from_drawing(d: &crate::drawing::Drawing) -> Result<Scene> {
+        Self::from_svg_with(
+            &d.file,
+            &d.svg,
+            &d.guides_group,
+            d.dir.as_deref(),
+            &d.policy,
+        )
+    }
+
+    /// [`Scene::from_svg`] under `policy` (which images may be read, and the limits the text
+    /// is prepared under, [`crate::input::prepare`]) for a drawing in folder `dir`.
+    pub fn from_svg_with(
+        file: &str,
+        svg: &str,
+        guides_group_id: &str,
+        dir: Option<&Path>,
+        policy: &InputPolicy,
+    ) -> Result<Scene> {
+        let svg = &*crate::input::prepare(file, svg, &policy.limits)?;
+        let tree = usvg::Tree::from_str(svg, &usvg_options(file, svg, dir, policy))
             .map_err(|e| Error::input(file, format!("not a usable SVG file: {e}")))?;
         let size = (tree.size().width() as f64, tree.size().height() as f64);
         let frame = root_frame(file, svg, size)?;

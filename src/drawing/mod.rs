@@ -145,33 +145,63 @@ pub struct Drawing {
     pub tolerances: Tolerances,
     /// The root's viewBox as `(min, max)` corners (from `viewBox`, else `width`/`height`).
     pub view_box: Option<(Point, Point)>,
-    /// The SVG source text.
+    /// The SVG source text, as prepared for parsing ([`crate::input::prepare`]: decoded,
+    /// entities expanded, checked against the limits).
     pub svg: String,
+    /// The folder the file is in, against which its image references resolve (`None` for text
+    /// that came from no file).
+    pub dir: Option<std::path::PathBuf>,
+    /// What the drawing may make crmorph read, and its limits (from [`ReadOptions::policy`]).
+    pub policy: crate::input::InputPolicy,
+    /// The id of the group of guides (never rendered), from [`ControlIds::guides_group`].
+    pub guides_group: String,
+    /// What the reader noticed and left out, one line each (an image the policy does not let
+    /// it read): for the user, not errors.
+    pub notes: Vec<String>,
 }
 
 impl Drawing {
-    /// Reads and validates a drawing from SVG text; `file` names it in error messages.
+    /// Reads and validates a drawing from SVG text; `file` names it in error messages. The
+    /// text is prepared first ([`crate::input::prepare`]), under `opts.policy`'s limits.
     pub fn from_str(file: &str, text: &str, opts: &ReadOptions) -> Result<Self> {
-        let root = xml::parse(text).map_err(|p| Error::input(file, p.to_string()))?;
+        let text = crate::input::prepare(file, text, &opts.policy.limits)?;
+        Self::from_prepared(file, text.into_owned(), None, opts)
+    }
+
+    /// Reads and validates a drawing from a file under `opts.policy`: a regular file within the
+    /// byte limit, `.svgz` decompressed, UTF-16 or a declared encoding decoded
+    /// ([`crate::input::read_svg`]).
+    pub fn open(path: &std::path::Path, opts: &ReadOptions) -> Result<Self> {
+        let file = crate::error::printable_path(path);
+        let text = crate::input::read_svg(path, &file, &opts.policy.limits)?;
+        let dir = match path.parent() {
+            Some(p) if p.as_os_str().is_empty() => Some(std::path::PathBuf::from(".")),
+            p => p.map(std::path::Path::to_path_buf),
+        };
+        Self::from_prepared(&file, text, dir, opts)
+    }
+
+    fn from_prepared(
+        file: &str,
+        svg: String,
+        dir: Option<std::path::PathBuf>,
+        opts: &ReadOptions,
+    ) -> Result<Self> {
+        let root = xml::parse(&svg).map_err(|p| Error::input(file, p.to_string()))?;
         let (controls, tolerances, view_box) =
             controls::read_controls(&root, file, &opts.ids, opts.density)?;
+        let notes = crate::input::refused_images(file, &svg, dir.as_deref(), &opts.policy);
         Ok(Drawing {
             file: file.to_string(),
             controls,
             tolerances,
             view_box,
-            svg: text.to_string(),
+            svg,
+            dir,
+            policy: opts.policy.clone(),
+            guides_group: opts.ids.guides_group.clone(),
+            notes,
         })
-    }
-
-    /// Reads and validates a drawing from a file.
-    pub fn open(path: &std::path::Path, opts: &ReadOptions) -> Result<Self> {
-        let file = path.display().to_string();
-        let bytes = std::fs::read(path)
-            .map_err(|e| Error::input(&file, format!("cannot read the file: {e}")))?;
-        let text = String::from_utf8(bytes)
-            .map_err(|_| Error::input(&file, "not an SVG file: not UTF-8 text"))?;
-        Self::from_str(&file, &text, opts)
     }
 }
 

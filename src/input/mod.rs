@@ -42,3 +42,94 @@ pub struct InputPolicy {
     /// Resource limits. Default: [`Limits::default`].
     pub limits: Limits,
 }
+
+mod encoding;
+mod entities;
+mod file;
+mod resources;
+mod scan;
+
+pub use encoding::decode;
+pub use file::read_file;
+pub use resources::{local_path, Refusal};
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use crate::error::Result;
+
+/// `text` made safe to parse: its document type declaration removed with the internal
+/// entities expanded under the byte limit ([`Limits::input_bytes`]), then checked against the
+/// depth, element and segment limits. Every SVG text crmorph parses goes through this first.
+pub fn prepare<'a>(name: &str, text: &'a str, limits: &Limits) -> Result<Cow<'a, str>> {
+    let text = match entities::expand(name, text, limits)? {
+        Some(expanded) => Cow::Owned(expanded),
+        None => Cow::Borrowed(text),
+    };
+    scan::scan(name, &text, limits)?;
+    Ok(text)
+}
+
+/// The text of the SVG file at `path` under the policy: read with [`read_file`], decoded with
+/// [`decode`] and made safe with [`prepare`]. `name` is how errors call it.
+pub fn read_svg(path: &Path, name: &str, limits: &Limits) -> Result<String> {
+    let bytes = read_file(path, name, limits)?;
+    let text = decode(name, &bytes, limits)?;
+    Ok(prepare(name, &text, limits)?.into_owned())
+}
+
+/// usvg options under `policy` for the drawing `file` in folder `dir`: images resolved by the
+/// policy's rules, nested SVG images prepared like drawings.
+pub fn usvg_options(
+    file: &str,
+    dir: Option<&Path>,
+    policy: &InputPolicy,
+) -> usvg::Options<'static> {
+    usvg::Options {
+        resources_dir: dir.map(Path::to_path_buf),
+        image_href_resolver: resources::resolver(file, dir, policy),
+        ..usvg::Options::default()
+    }
+}
+
+/// The references of `<image>` and `<feImage>` elements in `text` that are not data URIs, each
+/// with the element's id if it has one, in document order: what a drawing asks to read.
+pub fn image_refs(text: &str) -> Vec<(Option<String>, String)> {
+    scan::image_refs(text)
+}
+
+/// One note per image of the drawing `file` (folder `dir`) that the policy does not let
+/// crmorph read: the image is left out of the artwork, and the note says why.
+pub fn refused_images(
+    file: &str,
+    text: &str,
+    dir: Option<&Path>,
+    policy: &InputPolicy,
+) -> Vec<String> {
+    image_refs(text)
+        .into_iter()
+        .filter_map(|(id, href)| {
+            let why = match local_path(&href, dir, policy) {
+                Err(why) => why,
+                Ok(path) => match std::fs::metadata(&path) {
+                    Ok(m) if m.is_file() && m.len() <= policy.limits.input_bytes => return None,
+                    Ok(m) if m.is_file() => Refusal::Missing(format!(
+                        "it has {} bytes, over the limit of {} (--max-input-bytes)",
+                        m.len(),
+                        policy.limits.input_bytes
+                    )),
+                    Ok(_) => Refusal::Missing("it is not a regular file".into()),
+                    Err(e) => Refusal::Missing(format!("cannot read it: {e}")),
+                },
+            };
+            let which = match id {
+                Some(id) => format!("image '{}'", crate::error::printable(&id)),
+                None => "an image".to_string(),
+            };
+            Some(format!(
+                "{file}: {which} ({}) is left out: {why}",
+                crate::error::printable(&href)
+            ))
+        })
+        .collect()
+}

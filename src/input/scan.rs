@@ -1,0 +1,154 @@
+//! A pass over the text before it is parsed into trees: nesting depth, element count and path
+//! segments, against the [`Limits`].
+//!
+//! usvg and crmorph's own reader build trees and walk them recursively; 14,000 nested `<g>`
+//! overflow the stack, and a million elements take gigabytes. This pass streams the text with
+//! quick-xml, keeps only counters, and stops at the first limit crossed. Text that is not
+//! well-formed XML passes: the parsers downstream say what is wrong with it.
+
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::Reader;
+
+use super::{Limit, Limits};
+use crate::error::Result;
+
+/// Checks `text` against the depth, element and segment limits; `name` is how errors call the
+/// file.
+pub(crate) fn scan(name: &str, text: &str, limits: &Limits) -> Result<()> {
+    let mut reader = Reader::from_str(text);
+    let (mut depth, mut elements, mut segments) = (0usize, 0usize, 0usize);
+    loop {
+        let (start, empty) = match reader.read_event() {
+            Ok(Event::Start(e)) => (e, false),
+            Ok(Event::Empty(e)) => (e, true),
+            Ok(Event::End(_)) => {
+                depth = depth.saturating_sub(1);
+                continue;
+            }
+            Ok(Event::Eof) | Err(_) => return Ok(()),
+            Ok(_) => continue,
+        };
+        elements += 1;
+        if elements > limits.elements {
+            return Err(Limit::Elements.exceeded(
+                name,
+                &format!("more than {} elements", limits.elements),
+                limits,
+            ));
+        }
+        if !empty {
+            depth += 1;
+            if depth > limits.depth {
+                let at = reader.buffer_position();
+                return Err(Limit::Depth.exceeded(
+                    name,
+                    &format!("elements nested {depth} deep (at byte {at})"),
+                    limits,
+                ));
+            }
+        }
+        segments += path_segments(&start);
+        if segments > limits.segments {
+            return Err(Limit::Segments.exceeded(
+                name,
+                &format!("more than {} path segments", limits.segments),
+                limits,
+            ));
+        }
+    }
+}
+
+/// The segments an element's geometry attributes describe: the commands of `d`, the points of
+/// `points`.
+fn path_segments(e: &BytesStart<'_>) -> usize {
+    let mut n = 0;
+    for a in e.attributes().flatten() {
+        let key = a.key.local_name();
+        match key.as_ref() {
+            "d" => {
+                n += svgtypes::PathParser::from(a.value.as_ref()).count();
+            }
+            "points" => {
+                n += svgtypes::PointsParser::from(a.value.as_ref()).count();
+            }
+            _ => {}
+        }
+    }
+    n
+}
+
+/// The non-data references of `<image>` and `<feImage>` elements, with their ids.
+pub(crate) fn image_refs(text: &str) -> Vec<(Option<String>, String)> {
+    let mut out = Vec::new();
+    if !text.contains("mage") {
+        return out;
+    }
+    let mut reader = Reader::from_str(text);
+    loop {
+        let e = match reader.read_event() {
+            Ok(Event::Start(e)) | Ok(Event::Empty(e)) => e,
+            Ok(Event::Eof) | Err(_) => return out,
+            Ok(_) => continue,
+        };
+        if !matches!(e.local_name().as_ref(), "image" | "feImage") {
+            continue;
+        }
+        let (mut id, mut href) = (None, None);
+        for a in e.attributes().flatten() {
+            let value = || a.value.trim().to_string();
+            match a.key.local_name().as_ref() {
+                "id" => id = Some(value()),
+                "href" => href = Some(value()),
+                _ => {}
+            }
+        }
+        if let Some(h) = href.filter(|h| !h.starts_with("data:") && !h.starts_with('#')) {
+            out.push((id, h));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(text: &str, limits: &Limits) -> String {
+        scan("a.svg", text, limits)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    }
+
+    #[test]
+    fn each_limit_is_named_when_crossed() {
+        let l = Limits::default();
+        let deep = format!(
+            "<svg>{}{}</svg>",
+            "<g>".repeat(14_000),
+            "</g>".repeat(14_000)
+        );
+        let e = check(&deep, &l);
+        assert!(
+            e.contains("nested 257 deep") && e.contains("--max-depth"),
+            "{e}"
+        );
+        let mut few = l;
+        few.elements = 10;
+        let e = check(&format!("<svg>{}</svg>", "<rect/>".repeat(10)), &few);
+        assert!(e.contains("--max-elements"), "{e}");
+        assert_eq!(
+            check(&format!("<svg>{}</svg>", "<rect/>".repeat(9)), &few),
+            ""
+        );
+        let mut short = l;
+        short.segments = 4;
+        let path = "<svg><path d=\"M0 0 L1 1 2 2 3 3\"/><polyline points=\"0,0 1,1\"/></svg>";
+        let e = check(path, &short);
+        assert!(e.contains("more than 4 path segments"), "{e}");
+        assert_eq!(
+            check("<svg><g>", &l),
+            "",
+            "broken XML is for the parser to report"
+        );
+    }
+}
