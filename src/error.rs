@@ -40,6 +40,12 @@ pub fn printable(s: &str) -> String {
     escape(s, 200)
 }
 
+/// A message safe to print as one line on a terminal: control characters escaped as in
+/// [`printable`], never shortened. Escaping twice changes nothing.
+pub fn printable_line(s: &str) -> String {
+    escape(s, usize::MAX)
+}
+
 /// A path as a file name for messages: lossy UTF-8, with control characters escaped as in
 /// [`printable`] (but never shortened).
 pub fn printable_path(path: &std::path::Path) -> String {
@@ -66,13 +72,15 @@ fn escape(s: &str, max_chars: usize) -> String {
 
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file)?;
+        // Every part may quote the file (ids, paths): escaped, so that a hostile id cannot
+        // drive the terminal or break the line.
+        write!(f, "{}", printable_line(&self.file))?;
         if let Some(el) = &self.element {
             write!(f, ": element '{}'", printable(el))?;
         }
-        write!(f, ": {}", self.problem)?;
+        write!(f, ": {}", printable_line(&self.problem))?;
         if let Some(h) = &self.hint {
-            write!(f, " (hint: {h})")?;
+            write!(f, " (hint: {})", printable_line(h))?;
         }
         Ok(())
     }
@@ -149,5 +157,11 @@ mod tests {
         assert!(!Error::internal("x").is_input());
         let odd = Error::at("a.svg", "bad\u{1b}[31mid\n", "x").to_string();
         assert_eq!(odd, "a.svg: element 'bad\\u{1b}[31mid\\u{a}': x");
+        let quoted = Error::input("a.svg", "crosses 'f\u{7}'").with_hint("rename '\u{1b}'");
+        assert_eq!(
+            quoted.to_string(),
+            "a.svg: crosses 'f\\u{7}' (hint: rename '\\u{1b}')"
+        );
+        assert_eq!(printable_line(&printable_line("a\u{1b}")), "a\\u{1b}");
     }
 }

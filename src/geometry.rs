@@ -150,6 +150,26 @@ pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
         || (d4 == 0.0 && on(a, b, d))
 }
 
+/// Where segments `ab` and `cd`, known to intersect ([`segments_intersect`]), meet: their
+/// crossing point, or for segments along one line, the end of one that lies on the other.
+/// Error messages point here ("crosses itself near (x, y)").
+pub fn segment_crossing(a: Point, b: Point, c: Point, d: Point) -> Point {
+    let (r, s) = (b - a, d - c);
+    let denom = r.perp_dot(s);
+    if denom != 0.0 {
+        let u = ((c - a).perp_dot(s) / denom).clamp(0.0, 1.0);
+        let p = a + r * u;
+        if p.is_finite() {
+            return p;
+        }
+    }
+    let off = |p: Point| point_segment_distance(p, a, b).0 + point_segment_distance(p, c, d).0;
+    [a, b, c, d]
+        .into_iter()
+        .min_by(|p, q| off(*p).total_cmp(&off(*q)))
+        .unwrap_or(a)
+}
+
 /// Whether `p` lies inside the closed polygon `poly` (even-odd rule; points exactly on an edge
 /// may go either way).
 pub fn point_in_polygon(p: Point, poly: &[Point]) -> bool {
@@ -234,6 +254,18 @@ mod tests {
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
+    }
+
+    #[test]
+    fn crossings_are_located_where_the_segments_meet() {
+        let x = segment_crossing(p(0.0, 0.0), p(200.0, 200.0), p(0.0, 200.0), p(200.0, 0.0));
+        assert_eq!(x, p(100.0, 100.0));
+        // Along one line: where they touch.
+        let t = segment_crossing(p(0.0, 0.0), p(10.0, 0.0), p(10.0, 0.0), p(20.0, 0.0));
+        assert_eq!(t, p(10.0, 0.0));
+        // A T: the stem's end on the bar.
+        let t = segment_crossing(p(0.0, 0.0), p(10.0, 0.0), p(4.0, 5.0), p(4.0, 0.0));
+        assert_eq!(t, p(4.0, 0.0));
     }
 
     #[test]

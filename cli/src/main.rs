@@ -95,7 +95,8 @@ fn main() -> ExitCode {
     match result {
         Ok(Ok(())) => ExitCode::SUCCESS,
         Ok(Err(e)) => {
-            let one_line = format!("{e:#}").replace('\n', " ");
+            // One line, whatever the inputs' names and ids hold (control characters escaped).
+            let one_line = crmorph::error::printable_line(&format!("{e:#}"));
             eprintln!("error: {one_line}");
             if e.downcast_ref::<Usage>().is_some() {
                 ExitCode::from(2)

@@ -33,6 +33,9 @@ pub(crate) struct Safety {
     /// Most vertices of one drawing's curves after flattening.
     #[arg(long, value_name = "N", default_value_t = Limits::default().vertices)]
     pub(crate) max_vertices: usize,
+    /// Most shapes of one drawing that automatic mode pairs.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().shapes)]
+    pub(crate) max_shapes: usize,
 }
 
 impl Safety {
@@ -45,6 +48,7 @@ impl Safety {
         limits.segments = self.max_segments;
         limits.pixels = self.max_pixels;
         limits.vertices = self.max_vertices;
+        limits.shapes = self.max_shapes;
         let mut policy = InputPolicy::default();
         policy.limits = limits;
         policy.local_files = match &self.allow_local_files {

@@ -34,6 +34,7 @@ impl Progress {
     /// quiet; printed above the spinner.
     pub(crate) fn note(&self, text: &str) {
         if !self.quiet {
+            let text = crmorph::error::printable_line(text);
             self.bar.suspend(|| eprintln!("note: {text}"));
         }
     }

@@ -103,6 +103,24 @@ fn usvg_options(
     o
 }
 
+/// The nodes of a usvg group, counted up to `stop`.
+fn count_nodes(g: &usvg::Group, stop: usize) -> usize {
+    let mut n = 0;
+    let mut todo = vec![g];
+    while let Some(g) = todo.pop() {
+        for c in g.children() {
+            n += 1;
+            if n >= stop {
+                return n;
+            }
+            if let usvg::Node::Group(sub) = c {
+                todo.push(sub);
+            }
+        }
+    }
+    n
+}
+
 /// Converts a usvg/tiny-skia transform to a kurbo affine map.
 pub(crate) fn affine(t: usvg::Transform) -> Affine {
     Affine::new([
@@ -248,6 +266,15 @@ impl Scene {
         let svg = &*crate::input::prepare(file, svg, &policy.limits)?;
         let tree = usvg::Tree::from_str(svg, &usvg_options(file, svg, dir, policy))
             .map_err(|e| Error::input(file, format!("not a usable SVG file: {e}")))?;
+        // `<use>` copies what it references: a small file can expand to many elements.
+        let expanded = count_nodes(tree.root(), policy.limits.elements + 1);
+        if expanded > policy.limits.elements {
+            let what = format!(
+                "more than {} elements once <use> is expanded",
+                policy.limits.elements
+            );
+            return Err(crate::input::Limit::Elements.exceeded(file, &what, &policy.limits));
+        }
         let size = (tree.size().width() as f64, tree.size().height() as f64);
         let frame = root_frame(file, svg, size)?;
         let reader = Reader {

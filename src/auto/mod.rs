@@ -192,6 +192,13 @@ pub fn build_auto(
 ) -> Result<(Compatible, AutoReport, Drawing, Drawing)> {
     let tol = source.tolerances.flatten.min(target.tolerances.flatten);
     let (cs, ct) = (contours(source_scene, tol), contours(target_scene, tol));
+    for (d, c) in [(source, &cs), (target, &ct)] {
+        let limits = &d.policy.limits;
+        if c.len() > limits.shapes {
+            let what = format!("{} shapes to pair in automatic mode", c.len());
+            return Err(crate::input::Limit::Shapes.exceeded(&d.file, &what, limits));
+        }
+    }
     let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
     let pairs = matching::match_shapes(&cs, &ct, diagonal);
     let mut plans: Vec<PartPlan> = pairs

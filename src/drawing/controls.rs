@@ -276,7 +276,23 @@ pub(crate) fn read_controls(
             let r = kurbo::Shape::bounding_box(&b.path);
             (Point::new(r.x0, r.y0), Point::new(r.x1, r.y1))
         }
-        (None, Some(v)) => v,
+        (None, Some((lo, hi))) => {
+            let big = [lo.x, lo.y, hi.x, hi.y]
+                .iter()
+                .any(|v| v.abs() > MAX_COORDINATE);
+            if big {
+                return Err(Error::input(
+                    file,
+                    format!(
+                        "the viewBox (from ({:e}, {:e}) to ({:e}, {:e})) is too large to morph \
+                         accurately",
+                        lo.x, lo.y, hi.x, hi.y
+                    ),
+                )
+                .with_hint(format!("keep coordinates within ±{MAX_COORDINATE:e}")));
+            }
+            (lo, hi)
+        }
         (None, None) => {
             return Err(Error::input(
                 file,
@@ -292,10 +308,10 @@ pub(crate) fn read_controls(
         None => lo.distance(hi),
     };
     if diagonal.is_nan() || diagonal < MIN_DIAGONAL {
-        let who = boundary
-            .map(|b| b.id.clone())
-            .unwrap_or_else(|| "viewBox".into());
-        return Err(Error::at(file, who, "is degenerate: it has no extent"));
+        return Err(match boundary {
+            Some(b) => Error::at(file, &b.id, "is degenerate: it has no extent"),
+            None => Error::input(file, "the viewBox is degenerate: it has no extent"),
+        });
     }
     let tol = Tolerances::new(diagonal, density);
 
@@ -322,32 +338,28 @@ pub(crate) fn read_controls(
             points: vec![lo, Point::new(hi.x, lo.y), hi, Point::new(lo.x, hi.y)],
         },
     };
+    // Problems of the boundary, or of the viewBox standing in for it: only an element that
+    // exists is blamed.
+    let blame = |problem: String| match boundary {
+        Some(b) => Error::at(file, &b.id, problem),
+        None => Error::input(file, format!("the viewBox {problem}")),
+    };
     if all_on_one_line(&boundary_curve.points, 1e-9 * diagonal) {
-        return Err(Error::at(
-            file,
-            &boundary_curve.id,
-            "is degenerate: it encloses no area (its points lie on one line)",
+        return Err(blame(
+            "is degenerate: it encloses no area (its points lie on one line)".into(),
         ));
     }
     if let Some((i, j)) = polyline_self_intersection(&boundary_curve.points, true) {
-        let p = boundary_curve.points[i];
-        return Err(Error::at(
-            file,
-            &boundary_curve.id,
-            format!(
-                "crosses itself (edges {i} and {j}, near ({:.3}, {:.3}))",
-                p.x, p.y
-            ),
-        ));
+        let p = edge_crossing(&boundary_curve.points, i, j);
+        return Err(blame(format!(
+            "crosses itself (edges {i} and {j}, near ({:.3}, {:.3}))",
+            p.x, p.y
+        )));
     }
 
     let area = polygon_area(&boundary_curve.points);
     if boundary_curve.points.len() < 3 || area.abs() <= 1e-9 * diagonal * diagonal {
-        return Err(Error::at(
-            file,
-            &boundary_curve.id,
-            "is degenerate: it encloses no area",
-        ));
+        return Err(blame("is degenerate: it encloses no area".into()));
     }
     let mut features = Vec::new();
     let mut anchors = Vec::new();
@@ -473,6 +485,17 @@ impl SegmentGrid {
     }
 }
 
+/// Where edges `i` and `j` of a closed or open polyline cross.
+fn edge_crossing(points: &[Point], i: usize, j: usize) -> Point {
+    let n = points.len();
+    crate::geometry::segment_crossing(
+        points[i],
+        points[(i + 1) % n],
+        points[j],
+        points[(j + 1) % n],
+    )
+}
+
 fn edges_of(c: &ControlCurve) -> impl Iterator<Item = (usize, Point, Point)> + '_ {
     let n = c.points.len();
     let m = if c.closed { n } else { n - 1 };
@@ -494,8 +517,8 @@ pub(crate) fn validate_layout(
                 format!("lies outside the '{}'", boundary.id),
             ));
         }
-        if let Some((i, _)) = polyline_self_intersection(&f.points, f.closed) {
-            let p = f.points[i];
+        if let Some((i, j)) = polyline_self_intersection(&f.points, f.closed) {
+            let p = edge_crossing(&f.points, i, j);
             return Err(Error::at(
                 file,
                 &f.id,
@@ -533,6 +556,7 @@ pub(crate) fn validate_layout(
         let (a, b) = seg(c1, e1);
         let (c, d) = seg(c2, e2);
         if segments_intersect(a, b, c, d) {
+            let p = crate::geometry::segment_crossing(a, b, c, d);
             let (first, second) = (curves[c1.min(c2)], curves[c1.max(c2)]);
             let what = if first.kind == CurveKind::Boundary {
                 "leaves"
@@ -542,7 +566,7 @@ pub(crate) fn validate_layout(
             return Err(Error::at(
                 file,
                 &second.id,
-                format!("{what} '{}' near ({:.3}, {:.3})", first.id, a.x, a.y),
+                format!("{what} '{}' near ({:.3}, {:.3})", first.id, p.x, p.y),
             )
             .with_hint("features must lie inside the boundary and must not touch each other"));
         }

@@ -28,6 +28,9 @@ pub struct Limits {
     /// Vertices after flattening and correspondence, summed over the curves of one drawing
     /// (`--max-vertices`). Default: 200,000.
     pub vertices: usize,
+    /// Shapes (outlines, holes and strokes) of one drawing that automatic mode pairs with the
+    /// other's (`--max-shapes`): pairing costs the cube of their number. Default: 500.
+    pub shapes: usize,
 }
 
 impl Default for Limits {
@@ -39,6 +42,7 @@ impl Default for Limits {
             segments: 500_000,
             pixels: 50_000_000,
             vertices: 200_000,
+            shapes: 500,
         }
     }
 }
@@ -59,6 +63,8 @@ pub enum Limit {
     Pixels,
     /// [`Limits::vertices`].
     Vertices,
+    /// [`Limits::shapes`].
+    Shapes,
 }
 
 impl Limit {
@@ -71,6 +77,7 @@ impl Limit {
             Limit::Segments => "--max-segments",
             Limit::Pixels => "--max-pixels",
             Limit::Vertices => "--max-vertices",
+            Limit::Shapes => "--max-shapes",
         }
     }
 
@@ -83,6 +90,7 @@ impl Limit {
             Limit::Segments => "path segments",
             Limit::Pixels => "pixels per frame",
             Limit::Vertices => "vertices",
+            Limit::Shapes => "shapes",
         }
     }
 
@@ -95,6 +103,7 @@ impl Limit {
             Limit::Segments => limits.segments as u64,
             Limit::Pixels => limits.pixels,
             Limit::Vertices => limits.vertices as u64,
+            Limit::Shapes => limits.shapes as u64,
         }
     }
 
@@ -139,6 +148,7 @@ mod tests {
             Limit::Segments,
             Limit::Pixels,
             Limit::Vertices,
+            Limit::Shapes,
         ] {
             assert!(k.flag().starts_with("--max-"));
             assert!(k.of(&l) > 0);
