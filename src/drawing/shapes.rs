@@ -111,6 +111,9 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
         "rect" => {
             let (x, y) = (length(el, "x", 0.0)?, length(el, "y", 0.0)?);
             let (w, h) = (length(el, "width", 0.0)?, length(el, "height", 0.0)?);
+            if !(w >= 0.0 && h >= 0.0) {
+                return Err(format!("has a negative width or height ({w} × {h})"));
+            }
             let rx = el.attr("rx").map(|_| length(el, "rx", 0.0)).transpose()?;
             let ry = el.attr("ry").map(|_| length(el, "ry", 0.0)).transpose()?;
             let (rx, ry) = match (rx, ry) {
@@ -118,7 +121,8 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
                 (Some(a), None) | (None, Some(a)) => (a, a),
                 (None, None) => (0.0, 0.0),
             };
-            let (rx, ry) = (rx.clamp(0.0, w / 2.0), ry.clamp(0.0, h / 2.0));
+            // A negative radius is an error in SVG; read it as none, as browsers do.
+            let (rx, ry) = (rx.max(0.0).min(w / 2.0), ry.max(0.0).min(h / 2.0));
             let r = kurbo::Rect::new(x, y, x + w, y + h);
             if rx > 0.0 && ry > 0.0 {
                 // A rounded rectangle with elliptical corners: scale a circular one.
@@ -132,11 +136,17 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
         "circle" => {
             let c = (length(el, "cx", 0.0)?, length(el, "cy", 0.0)?);
             let r = length(el, "r", 0.0)?;
+            if !(r >= 0.0) {
+                return Err(format!("has a negative radius ({r})"));
+            }
             p = kurbo::Circle::new(c, r).to_path(SHAPE_ACCURACY * r.max(1.0));
         }
         "ellipse" => {
             let c = (length(el, "cx", 0.0)?, length(el, "cy", 0.0)?);
             let (rx, ry) = (length(el, "rx", 0.0)?, length(el, "ry", 0.0)?);
+            if !(rx >= 0.0 && ry >= 0.0) {
+                return Err(format!("has a negative radius ({rx}, {ry})"));
+            }
             p = kurbo::Ellipse::new(c, (rx, ry), 0.0).to_path(SHAPE_ACCURACY * rx.max(ry).max(1.0));
         }
         "line" => {

@@ -6,6 +6,7 @@ mod compatible;
 mod errors;
 mod export;
 mod folds;
+mod hostile;
 mod motion;
 mod rounding;
 mod similarity;
