@@ -20,7 +20,8 @@ fn survive(name: &str, source: &[u8], target: &[u8]) {
     let secs = started.elapsed().as_secs_f64();
     match run {
         Ok(Ok(())) => eprintln!("STAT ok"),
-        Ok(Err(e)) => { eprintln!("STAT err {e}");
+        Ok(Err(e)) => {
+            eprintln!("STAT err {e}");
             assert!(e.is_input(), "{name}: {e}");
             assert!(!e.to_string().contains('\n'), "{name}: one line: {e}");
         }
