@@ -355,6 +355,9 @@ impl Binding {
         } else {
             super::flatten_tolerance(scene.view_box, scene.size)
         };
+        // Far-away artwork is cut to the reach of the view first (`reach`): its points would
+        // otherwise grow with its coordinates, and each be located far from the mesh.
+        let (scene, _) = super::within_reach(scene);
         let locator = Locator::new(mesh_vertices, triangles, parts)?;
         // Half the mesh's mean edge length: straight artwork segments bend with the mesh.
         let (sum, count) = triangles.iter().fold((0.0, 0usize), |(s, c), t| {
@@ -373,7 +376,7 @@ impl Binding {
         let mut items = Vec::new();
         bind_items(&scene.root.children, &locator, resolution, &mut items);
         Ok(Binding {
-            scene: scene.clone(),
+            scene,
             triangles: triangles.to_vec(),
             rest: mesh_vertices.to_vec(),
             items,
