@@ -210,7 +210,10 @@ pub fn build_auto(
     let (target_scene, far_t) = crate::artwork::within_reach(target_scene);
     let (source_scene, target_scene) = (&source_scene, &target_scene);
     let tol = source.tolerances.flatten.min(target.tolerances.flatten);
-    let (cs, ct) = (contours(source_scene, tol), contours(target_scene, tol));
+    let (cs, ct) = (
+        contours(source_scene, tol, &opts.limits)?,
+        contours(target_scene, tol, &opts.limits)?,
+    );
     let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
     let pairs = matching::match_shapes(&cs, &ct, diagonal);
     let mut plans: Vec<PartPlan> = pairs
@@ -235,6 +238,7 @@ pub fn build_auto(
             .then(x.source.cmp(&y.source))
     });
     let step = source.tolerances.max_edge.min(target.tolerances.max_edge) * 0.5;
+    check_vertex_budget(&plans, &cs, &ct, step, source, target, opts)?;
     let inputs = PartInputs {
         source,
         target,
@@ -360,6 +364,43 @@ pub fn build_auto(
         area_region: Some(area_region),
     };
     Ok((c, report, source.clone(), target.clone()))
+}
+
+/// A part's side for [`crate::budget::mesh_vertices`]: its outline, then its holes.
+fn part_side(c: &[Contour], outline: usize, holes: Vec<usize>) -> Vec<(&[Point], bool)> {
+    std::iter::once(outline)
+        .chain(holes)
+        .map(|k| (&c[k].points[..], c[k].closed))
+        .collect()
+}
+
+/// Refuses, before any part is built, shape pairs whose meshes would pass the vertex budget
+/// in all ([`crate::budget`]): each part's curves densified at `step` and corresponded at its
+/// own tolerances, and its inside refined.
+fn check_vertex_budget(
+    plans: &[PartPlan],
+    cs: &[Contour],
+    ct: &[Contour],
+    step: f64,
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+) -> Result<()> {
+    let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
+    let mut total = 0.0;
+    for p in plans {
+        let tol = part::part_tolerances(&cs[p.source], &ct[p.target], diagonal, opts.density);
+        let edge = tol.max_edge.min(step);
+        let tol = crate::tolerance::Tolerances {
+            max_edge: edge,
+            ..tol
+        };
+        let s = part_side(cs, p.source, p.holes.iter().map(|h| h.0).collect());
+        let t = part_side(ct, p.target, p.holes.iter().map(|h| h.1).collect());
+        total += crate::budget::mesh_vertices(&s, &t, &tol);
+    }
+    let files = format!("{} → {}", source.file, target.file);
+    crate::budget::check(total, opts.density, &files, &opts.limits)
 }
 
 /// The best-fit turn of the paired outlines' centroids from source to target, when there are

@@ -106,6 +106,7 @@ mod near_miss;
 mod shapes;
 mod xml;
 
+pub(crate) use flatten::flattened_count;
 pub use near_miss::{resembles, NearMiss};
 
 use crate::error::{Error, Result};
@@ -154,7 +155,7 @@ impl Drawing {
     pub fn from_str(file: &str, text: &str, opts: &ReadOptions) -> Result<Self> {
         let root = xml::parse(text).map_err(|p| Error::input(file, p.to_string()))?;
         let (controls, tolerances, view_box) =
-            controls::read_controls(&root, file, &opts.ids, opts.density)?;
+            controls::read_controls(&root, file, &opts.ids, opts.density, &opts.policy.limits)?;
         Ok(Drawing {
             file: file.to_string(),
             controls,
