@@ -523,7 +523,8 @@ fn within_budget(scene: &Scene, res: Resolution) -> Resolution {
     }
     walk(&scene.root, &mut add);
     let splits = length / res.max_segment;
-    if !(flat + splits > ARTWORK_POINTS) {
+    // NaN (no artwork) or within budget: as asked.
+    if flat + splits <= ARTWORK_POINTS || (flat + splits).is_nan() {
         return res;
     }
     let mut out = res;

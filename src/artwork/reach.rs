@@ -20,7 +20,7 @@
 //!   point in the reach is unchanged, and so is the fill under either fill rule. Curves are
 //!   split (de Casteljau) until each piece's control points lie inside (kept exactly) or
 //!   beyond one side (replaced by its chord, which the same argument allows), so what shows
-//!   is the exact curve. i_overlay is not used here: it snaps to an integer grid fitted to the
+//!   is the exact curve. `i_overlay` is not used here: it snaps to an integer grid fitted to the
 //!   input's extent, which for the hostile inputs this exists for is no grid at all.
 //! - A stroke-only path partly outside is **cut** where it leaves the reach, its pieces inside
 //!   kept as open subpaths (their caps lie at the reach's edge, out of view).

@@ -29,7 +29,7 @@ fn lp(p: kurbo::Point) -> lyon_geom::Point<f64> {
 /// coordinate is not finite or the tolerance is not positive, so that a check against a budget
 /// refuses the path before it is flattened.
 pub(crate) fn flattened_count(path: &BezPath, tolerance: f64) -> f64 {
-    if !(tolerance > 0.0) {
+    if tolerance.is_nan() || tolerance <= 0.0 {
         return f64::INFINITY;
     }
     let wang = |degree: f64, dd: f64| {
@@ -43,6 +43,9 @@ pub(crate) fn flattened_count(path: &BezPath, tolerance: f64) -> f64 {
     for el in path.elements() {
         count += match *el {
             PathEl::MoveTo(p) | PathEl::LineTo(p) => {
+                if !p.is_finite() {
+                    return f64::INFINITY;
+                }
                 last = p;
                 1.0
             }
