@@ -8,6 +8,7 @@
 use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
+use crate::input::Limits;
 use crate::mapping::{composite_map, MappingOptions, MappingStats};
 use crate::mesh::CompatibleMeshes;
 use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
@@ -26,6 +27,9 @@ pub struct MorphOptions {
     pub correspondence: CorrespondenceOptions,
     /// Composite mapping options. Default: [`MappingOptions::default`].
     pub mapping: MappingOptions,
+    /// The resource limits; [`Limits::vertices`] bounds the meshes, checked before they are
+    /// built ([`crate::budget`]). Default: [`Limits::default`].
+    pub limits: Limits,
 }
 
 /// The result of [`build`]: compatible meshes and what they were made from.
@@ -184,8 +188,25 @@ pub fn curve_pairs(
     Ok((tol, pairs))
 }
 
+/// Refuses, before anything is built, two drawings whose meshes at `opts.density` would pass
+/// the vertex budget ([`crate::budget`]).
+fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<()> {
+    let tol = common_tolerances(source, target, opts.density);
+    fn side(d: &Drawing) -> Vec<(&[crate::geometry::Point], bool)> {
+        let c = &d.controls;
+        std::iter::once(&c.boundary)
+            .chain(&c.features)
+            .map(|k| (&k.points[..], k.closed))
+            .collect()
+    }
+    let v = crate::budget::mesh_vertices(&side(source), &side(target), &tol);
+    let files = format!("{} → {}", source.file, target.file);
+    crate::budget::check(v, opts.density, &files, &opts.limits)
+}
+
 /// Builds compatible triangulations of two drawings (§3, §5).
 pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
+    check_vertex_budget(source, target, opts)?;
     let (tol, pairs) = curve_pairs(source, target, opts)?;
     let fix = |e| name_files(e, source, target, opts.from_target);
     let tri = triangulate(&pairs, &tol, opts.from_target).map_err(fix)?;

@@ -30,6 +30,7 @@
 
 pub mod artwork;
 pub mod auto;
+pub mod budget;
 pub mod color;
 pub mod compatible;
 pub mod correspondence;

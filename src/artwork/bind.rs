@@ -355,6 +355,9 @@ impl Binding {
         } else {
             super::flatten_tolerance(scene.view_box, scene.size)
         };
+        // Far-away artwork is cut to the reach of the view first (`reach`): its points would
+        // otherwise grow with its coordinates, and each be located far from the mesh.
+        let (scene, _) = super::within_reach(scene);
         let locator = Locator::new(mesh_vertices, triangles, parts)?;
         // Half the mesh's mean edge length: straight artwork segments bend with the mesh.
         let (sum, count) = triangles.iter().fold((0.0, 0usize), |(s, c), t| {
@@ -366,14 +369,17 @@ impl Binding {
         } else {
             f64::INFINITY
         };
-        let resolution = Resolution {
-            tolerance,
-            max_segment,
-        };
+        let resolution = within_budget(
+            &scene,
+            Resolution {
+                tolerance,
+                max_segment,
+            },
+        );
         let mut items = Vec::new();
         bind_items(&scene.root.children, &locator, resolution, &mut items);
         Ok(Binding {
-            scene: scene.clone(),
+            scene,
             triangles: triangles.to_vec(),
             rest: mesh_vertices.to_vec(),
             items,
@@ -470,6 +476,73 @@ pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Op
 struct Resolution {
     tolerance: f64,
     max_segment: f64,
+}
+
+/// Most artwork points one binding makes (about 100 MB of locations). Artwork is cut to the
+/// reach of the view first, so only a great many segments can come near it; then the
+/// resolution is coarsened to fit rather than the morph refused: it is how finely the artwork
+/// bends with the mesh, not what the morph is.
+const ARTWORK_POINTS: f64 = 3_000_000.0;
+
+/// `res`, coarsened when binding `scene` at it would make more than [`ARTWORK_POINTS`] points
+/// (estimated from the control points before anything is flattened): first the splitting of
+/// long segments, then the flattening tolerance.
+fn within_budget(scene: &Scene, res: Resolution) -> Resolution {
+    let (mut flat, mut length) = (0.0, 0.0);
+    let mut add = |path: &BezPath| {
+        flat += crate::drawing::flattened_count(path, res.tolerance);
+        let mut last = kurbo::Point::ORIGIN;
+        for el in path.elements() {
+            let (pts, n): ([kurbo::Point; 3], usize) = match *el {
+                PathEl::MoveTo(p) => {
+                    last = p;
+                    continue;
+                }
+                PathEl::LineTo(p) => ([p, p, p], 1),
+                PathEl::QuadTo(a, p) => ([a, p, p], 2),
+                PathEl::CurveTo(a, b, p) => ([a, b, p], 3),
+                PathEl::ClosePath => continue,
+            };
+            for &q in &pts[..n] {
+                length += last.distance(q);
+                last = q;
+            }
+        }
+    };
+    fn walk(g: &super::Group, add: &mut dyn FnMut(&BezPath)) {
+        for s in g.clip.iter().flat_map(|c| &c.shapes) {
+            add(&s.path);
+        }
+        for c in &g.children {
+            match c {
+                Item::Group(sub) => walk(sub, add),
+                Item::Path(p) => add(&p.path),
+                Item::Image(_) => {}
+            }
+        }
+    }
+    walk(&scene.root, &mut add);
+    let splits = length / res.max_segment;
+    // NaN (no artwork) or within budget: as asked.
+    if flat + splits <= ARTWORK_POINTS || (flat + splits).is_nan() {
+        return res;
+    }
+    let mut out = res;
+    if flat < 0.5 * ARTWORK_POINTS {
+        out.max_segment = res.max_segment * splits / (ARTWORK_POINTS - flat);
+    } else {
+        // Wang's count goes with 1/√tolerance.
+        out.max_segment = f64::INFINITY;
+        out.tolerance = res.tolerance * (flat / (0.5 * ARTWORK_POINTS)).powi(2);
+    }
+    log::warn!(
+        "{}: artwork of about {:.1e} points bound more coarsely (segments up to {:.3e},          flattened within {:.3e} user units)",
+        scene.file,
+        flat + splits,
+        out.max_segment,
+        out.tolerance
+    );
+    out
 }
 
 /// Appends the points that split the segment from `a` to `b` into pieces no longer than

@@ -4,6 +4,7 @@
 //!
 //! ```text
 //! SVG ─usvg─▶ Scene (exact curves, root user space)            scene
+//!   ─within reach of the view (far paths cut or left out)─▶      reach
 //!   ─flatten at ¼ px, locate in the mesh─▶ Binding              bind
 //!   ─frame vertices (mesh at t)─▶ warped Scene (polylines)      warp
 //! ```
@@ -26,11 +27,13 @@
 
 mod bind;
 mod pair;
+mod reach;
 mod scene;
 mod warp;
 
 pub use bind::{Binding, Location, PointLocator};
 pub use pair::ArtworkPair;
+pub use reach::{within_reach, FarPath, REACH};
 pub use scene::flatten_tolerance;
 
 #[cfg(test)]

@@ -9,7 +9,9 @@
 //! centre lines of any visible length are kept (a short one with round caps is a dot).
 
 use crate::artwork::{Item, Scene};
+use crate::error::Result;
 use crate::geometry::{polygon_area, Point};
+use crate::input::{Limit, Limits};
 
 /// What a contour outlines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,8 +47,31 @@ pub struct Contour {
     pub elongation: f64,
 }
 
-/// The contours of every path of `scene`, flattened at `tolerance` user units.
-pub fn contours(scene: &Scene, tolerance: f64) -> Vec<Contour> {
+/// The contours of every path of `scene`, flattened at `tolerance` user units; an error when
+/// they would flatten to more than [`Limits::vertices`] in all (estimated before flattening,
+/// [`crate::drawing`]'s Wang bound), so that a huge path or a tiny tolerance cannot fill
+/// memory. Far-away artwork should be cut first ([`crate::artwork::within_reach`]).
+pub fn contours(scene: &Scene, tolerance: f64, limits: &Limits) -> Result<Vec<Contour>> {
+    let mut estimate = 0.0;
+    for item in scene.items() {
+        if let Item::Path(p) = item {
+            estimate += crate::drawing::flattened_count(
+                &(scene.root_transform * p.path.clone()),
+                tolerance.max(1e-9),
+            );
+            if estimate > limits.vertices as f64 {
+                let what = format!(
+                    "artwork flattening to about {} vertices",
+                    crate::budget::count_text(estimate)
+                );
+                return Err(Limit::Vertices.exceeded(&scene.file, &what, limits));
+            }
+        }
+    }
+    Ok(contours_flattened(scene, tolerance))
+}
+
+fn contours_flattened(scene: &Scene, tolerance: f64) -> Vec<Contour> {
     let (lo, hi) = scene.view_box;
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
     let min_area = 1e-4 * (w * h).abs();
@@ -306,7 +331,7 @@ mod tests {
         let s = scene(
             r##"<path fill-rule="evenodd" fill="#000" d="M10 10H90V90H10Z M30 30H70V70H30Z"/>"##,
         );
-        let c = contours(&s, 0.05);
+        let c = contours(&s, 0.05, &Limits::default()).unwrap();
         assert_eq!(c.len(), 2);
         assert_eq!(c[0].kind, ContourKind::Outline);
         assert_eq!(c[1].kind, ContourKind::Hole);
@@ -323,7 +348,7 @@ mod tests {
                 <circle cx="50" cy="20" r="0.2" fill="red"/>
                 <ellipse cx="50" cy="80" rx="20" ry="5" fill="blue"/>"##,
         );
-        let c = contours(&s, 0.05);
+        let c = contours(&s, 0.05, &Limits::default()).unwrap();
         assert_eq!(c.len(), 2, "{c:?}");
         assert_eq!(c[0].kind, ContourKind::Stroke);
         assert!(!c[0].closed && (c[0].length - 80.0).abs() < 1e-9);

@@ -85,6 +85,10 @@ pub struct AutoReport {
     /// not interpolate, they are not plain paths (a group with opacity or a clip, a dashed
     /// stroke), or their paint order differs between the drawings.
     pub blended: usize,
+    /// Paths far outside the view, cut at the edge of its reach or left out
+    /// ([`crate::artwork::within_reach`]), one phrase each ("path 3 at (1e5, 185) lies far
+    /// outside the view: left out").
+    pub far: Vec<String>,
 }
 
 impl std::fmt::Display for AutoReport {
@@ -143,6 +147,16 @@ impl std::fmt::Display for AutoReport {
             1 => f.write_str("; 1 path cross-fades")?,
             n => write!(f, "; {n} paths cross-fade")?,
         }
+        for far in self.far.iter().take(SHOWN) {
+            write!(f, "; {far}")?;
+        }
+        if self.far.len() > SHOWN {
+            write!(
+                f,
+                "; {} more paths far outside the view",
+                self.far.len() - SHOWN
+            )?;
+        }
         Ok(())
     }
 }
@@ -190,13 +204,20 @@ pub fn build_auto(
     target_scene: &Scene,
     opts: &MorphOptions,
 ) -> Result<(Compatible, AutoReport, Drawing, Drawing)> {
+    // Far-away artwork cut to the reach of the view (`artwork::within_reach`), so that no
+    // stage below works in proportion to its coordinates.
+    let (source_scene, far_s) = crate::artwork::within_reach(source_scene);
+    let (target_scene, far_t) = crate::artwork::within_reach(target_scene);
+    let (source_scene, target_scene) = (&source_scene, &target_scene);
     let tol = source.tolerances.flatten.min(target.tolerances.flatten);
-    let (cs, ct) = (contours(source_scene, tol), contours(target_scene, tol));
+    let (cs, ct) = (
+        contours(source_scene, tol, &opts.limits)?,
+        contours(target_scene, tol, &opts.limits)?,
+    );
     for (d, c) in [(source, &cs), (target, &ct)] {
-        let limits = &d.policy.limits;
-        if c.len() > limits.shapes {
+        if c.len() > opts.limits.shapes {
             let what = format!("{} shapes to pair in automatic mode", c.len());
-            return Err(crate::input::Limit::Shapes.exceeded(&d.file, &what, limits));
+            return Err(crate::input::Limit::Shapes.exceeded(&d.file, &what, &opts.limits));
         }
     }
     let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
@@ -223,6 +244,7 @@ pub fn build_auto(
             .then(x.source.cmp(&y.source))
     });
     let step = source.tolerances.max_edge.min(target.tolerances.max_edge) * 0.5;
+    check_vertex_budget(&plans, &cs, &ct, step, source, target, opts)?;
     let inputs = PartInputs {
         source,
         target,
@@ -334,6 +356,11 @@ pub fn build_auto(
             .collect(),
         morphing,
         blended,
+        far: far_s
+            .iter()
+            .map(|f| far_note(source_scene, f))
+            .chain(far_t.iter().map(|f| far_note(target_scene, f)))
+            .collect(),
     };
     let c = Compatible {
         meshes,
@@ -343,6 +370,43 @@ pub fn build_auto(
         area_region: Some(area_region),
     };
     Ok((c, report, source.clone(), target.clone()))
+}
+
+/// A part's side for [`crate::budget::mesh_vertices`]: its outline, then its holes.
+fn part_side(c: &[Contour], outline: usize, holes: Vec<usize>) -> Vec<(&[Point], bool)> {
+    std::iter::once(outline)
+        .chain(holes)
+        .map(|k| (&c[k].points[..], c[k].closed))
+        .collect()
+}
+
+/// Refuses, before any part is built, shape pairs whose meshes would pass the vertex budget
+/// in all ([`crate::budget`]): each part's curves densified at `step` and corresponded at its
+/// own tolerances, and its inside refined.
+fn check_vertex_budget(
+    plans: &[PartPlan],
+    cs: &[Contour],
+    ct: &[Contour],
+    step: f64,
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+) -> Result<()> {
+    let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
+    let mut total = 0.0;
+    for p in plans {
+        let tol = part::part_tolerances(&cs[p.source], &ct[p.target], diagonal, opts.density);
+        let edge = tol.max_edge.min(step);
+        let tol = crate::tolerance::Tolerances {
+            max_edge: edge,
+            ..tol
+        };
+        let s = part_side(cs, p.source, p.holes.iter().map(|h| h.0).collect());
+        let t = part_side(ct, p.target, p.holes.iter().map(|h| h.1).collect());
+        total += crate::budget::mesh_vertices(&s, &t, &tol);
+    }
+    let files = format!("{} → {}", source.file, target.file);
+    crate::budget::check(total, opts.density, &files, &opts.limits)
 }
 
 /// The best-fit turn of the paired outlines' centroids from source to target, when there are
@@ -460,6 +524,48 @@ fn gap(a: &Contour, b: &Contour) -> f64 {
                 .fold(f64::INFINITY, f64::min)
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+/// What [`crate::artwork::within_reach`] did to one path of `scene`, for the report: the path
+/// named as [`shape_name`] names paths (its id, or "path N"), where it is, and what was done.
+fn far_note(scene: &Scene, far: &crate::artwork::FarPath) -> String {
+    let items = scene.items();
+    let id = match items.get(far.item) {
+        Some(Item::Path(p)) => p.id.clone(),
+        _ => String::new(),
+    };
+    let name = if id.is_empty() {
+        let n = items[..far.item.min(items.len())]
+            .iter()
+            .filter(|i| matches!(i, Item::Path(_)))
+            .count()
+            + 1;
+        format!("path {n}")
+    } else {
+        format!("'{}'", crate::error::printable(&id))
+    };
+    let num = |x: f64| {
+        if x.abs() < 1e6 {
+            format!("{x:.0}")
+        } else {
+            format!("{x:.1e}")
+        }
+    };
+    if far.not_finite {
+        format!("{name} has a coordinate that is not finite: left out")
+    } else if far.left_out {
+        format!(
+            "{name} at ({}, {}) lies far outside the view: left out",
+            num(far.at.x),
+            num(far.at.y)
+        )
+    } else {
+        format!(
+            "{name} at ({}, {}) reaches far outside the view: cut off there",
+            num(far.at.x),
+            num(far.at.y)
+        )
+    }
 }
 
 /// A shape named as a user would name it: its element's id (with where it is when the element

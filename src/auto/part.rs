@@ -116,7 +116,12 @@ pub(crate) struct PartInputs<'a> {
 /// The tolerances of a part: relative to its own size, so that a small part gets a mesh as
 /// fine relative to itself as a large one, but not finer than a quarter of the drawing
 /// (tiny parts keep their flattened outline vertices and a coarse interior).
-fn part_tolerances(a: &Contour, b: &Contour, drawing_diagonal: f64, density: f64) -> Tolerances {
+pub(crate) fn part_tolerances(
+    a: &Contour,
+    b: &Contour,
+    drawing_diagonal: f64,
+    density: f64,
+) -> Tolerances {
     let size = |c: &Contour| {
         crate::geometry::bounding_box(c.points.iter().copied())
             .map_or(0.0, |(lo, hi)| lo.distance(hi))

@@ -8,6 +8,7 @@ use super::xml::Element;
 use super::{Anchor, ControlCurve, ControlIds, Controls, SkeletonChain};
 use crate::error::{Error, Result};
 use crate::geometry::{polygon_area, polyline_self_intersection, segments_intersect, Point};
+use crate::input::{Limit, Limits};
 use crate::mesh::CurveKind;
 use crate::tolerance::{Tolerances, MAX_COORDINATE, MIN_DIAGONAL};
 
@@ -244,6 +245,25 @@ fn drawing_size(path: &BezPath) -> f64 {
     2.0 * pts.iter().map(|p| p.distance(c)).fold(0.0, f64::max)
 }
 
+/// Refuses control curves that would flatten (at `tolerance`) to more vertices in all than
+/// [`Limits::vertices`], before any is flattened: a curve far larger than the drawing, or a
+/// `--density` that makes its tolerance tiny, would otherwise fill memory.
+fn check_vertex_budget(found: &[Found], tolerance: f64, file: &str, limits: &Limits) -> Result<()> {
+    let mut total = 0.0;
+    for f in found.iter().filter(|f| !matches!(f.role, Role::Anchor(_))) {
+        total += super::flatten::flattened_count(&f.path, tolerance);
+        if total > limits.vertices as f64 {
+            let what = format!(
+                "control curves flattening to about {} vertices (at '{}')",
+                crate::budget::count_text(total),
+                crate::error::printable(&f.id)
+            );
+            return Err(Limit::Vertices.exceeded(file, &what, limits));
+        }
+    }
+    Ok(())
+}
+
 /// What [`read_controls`] finds: the controls, their tolerances and the root's viewBox.
 pub(crate) type ReadControls = (Controls, Tolerances, Option<(Point, Point)>);
 
@@ -253,6 +273,7 @@ pub(crate) fn read_controls(
     file: &str,
     ids: &ControlIds,
     density: f64,
+    limits: &Limits,
 ) -> Result<ReadControls> {
     let vb = view_box(root, file)?;
     let mut found = Vec::new();
@@ -314,6 +335,7 @@ pub(crate) fn read_controls(
         });
     }
     let tol = Tolerances::new(diagonal, density);
+    check_vertex_budget(&found, tol.flatten, file, limits)?;
 
     let boundary_curve = match boundary {
         Some(b) => {

@@ -21,6 +21,55 @@ fn lp(p: kurbo::Point) -> lyon_geom::Point<f64> {
     point(p.x, p.y)
 }
 
+/// About how many points flattening `path` at `tolerance` makes, computed from its control
+/// points before any is made: one per line, and per curve the segment count of Wang's formula
+/// (`⌈√(n(n−1)/8 · max‖Pᵢ − 2Pᵢ₊₁ + Pᵢ₊₂‖ / tolerance)⌉` for degree n), the number of uniform
+/// pieces that keeps the curve within `tolerance` — an upper bound for the adaptive flatteners
+/// of lyon and kurbo, which place their points where the curve bends. Infinite when a
+/// coordinate is not finite or the tolerance is not positive, so that a check against a budget
+/// refuses the path before it is flattened.
+pub(crate) fn flattened_count(path: &BezPath, tolerance: f64) -> f64 {
+    if tolerance.is_nan() || tolerance <= 0.0 {
+        return f64::INFINITY;
+    }
+    let wang = |degree: f64, dd: f64| {
+        (degree * (degree - 1.0) / 8.0 * dd / tolerance)
+            .sqrt()
+            .ceil()
+            .max(1.0)
+    };
+    let mut last = kurbo::Point::ORIGIN;
+    let mut count = 0.0;
+    for el in path.elements() {
+        count += match *el {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) => {
+                if !p.is_finite() {
+                    return f64::INFINITY;
+                }
+                last = p;
+                1.0
+            }
+            PathEl::QuadTo(c, p) => {
+                let dd = (last - 2.0 * c.to_vec2() + p.to_vec2()).to_vec2().hypot();
+                last = p;
+                wang(2.0, dd)
+            }
+            PathEl::CurveTo(c1, c2, p) => {
+                let d1 = (last - 2.0 * c1.to_vec2() + c2.to_vec2()).to_vec2().hypot();
+                let d2 = (c1 - 2.0 * c2.to_vec2() + p.to_vec2()).to_vec2().hypot();
+                last = p;
+                wang(3.0, d1.max(d2))
+            }
+            PathEl::ClosePath => 0.0,
+        };
+    }
+    if count.is_nan() {
+        f64::INFINITY
+    } else {
+        count
+    }
+}
+
 /// Flattens `path` so that no point of a curve is farther than `tolerance` from the polyline.
 /// Points closer than `snap` to their predecessor are dropped.
 pub(crate) fn flatten(path: &BezPath, tolerance: f64, snap: f64) -> Vec<Subpath> {
@@ -132,6 +181,25 @@ mod tests {
         }
         // finer tolerance, more points
         assert!(flatten(&c, tol / 10.0, 1e-9)[0].points.len() > n);
+    }
+
+    #[test]
+    fn the_estimate_bounds_the_flattened_count() {
+        for (r, tol) in [(100.0, 0.05), (1e6, 0.2), (3.0, 1e-4)] {
+            let c = kurbo::Circle::new((10.0, -5.0), r).to_path(1e-9);
+            let n = flatten(&c, tol, 0.0)[0].points.len() as f64;
+            let est = flattened_count(&c, tol);
+            assert!(
+                est >= n && est <= 4.0 * n + 8.0,
+                "r {r}: {n} points, estimated {est}"
+            );
+        }
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.curve_to((3.4e38, 0.0), (0.0, 3.4e38), (1.0, 1.0));
+        assert!(flattened_count(&p, 0.2) > 1e18);
+        p.line_to((f64::NAN, 0.0));
+        assert_eq!(flattened_count(&p, 0.2), f64::INFINITY);
     }
 
     #[test]

@@ -106,6 +106,7 @@ mod near_miss;
 mod shapes;
 mod xml;
 
+pub(crate) use flatten::flattened_count;
 pub use near_miss::{resembles, NearMiss};
 
 use crate::error::{Error, Result};
@@ -189,7 +190,7 @@ impl Drawing {
     ) -> Result<Self> {
         let root = xml::parse(&svg).map_err(|p| Error::input(file, p.to_string()))?;
         let (controls, tolerances, view_box) =
-            controls::read_controls(&root, file, &opts.ids, opts.density)?;
+            controls::read_controls(&root, file, &opts.ids, opts.density, &opts.policy.limits)?;
         let notes = crate::input::refused_images(file, &svg, dir.as_deref(), &opts.policy);
         Ok(Drawing {
             file: file.to_string(),

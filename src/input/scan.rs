@@ -47,7 +47,7 @@ pub(crate) fn scan(name: &str, text: &str, limits: &Limits) -> Result<()> {
                 ));
             }
         }
-        segments += path_segments(&start);
+        segments += path_segments(name, &start)?;
         if segments > limits.segments {
             return Err(Limit::Segments.exceeded(
                 name,
@@ -58,15 +58,33 @@ pub(crate) fn scan(name: &str, text: &str, limits: &Limits) -> Result<()> {
     }
 }
 
+/// The largest arc radius accepted in path data. Arcs become cubic curves before anything
+/// else sees them, in a number that grows with the radius: 3.4e38 gives millions per arc.
+const MAX_ARC_RADIUS: f64 = crate::tolerance::MAX_COORDINATE;
+
 /// The segments an element's geometry attributes describe: the commands of `d`, the points of
-/// `points`.
-fn path_segments(e: &BytesStart<'_>) -> usize {
+/// `points`. An arc whose radius is beyond [`MAX_ARC_RADIUS`] is an error.
+fn path_segments(name: &str, e: &BytesStart<'_>) -> Result<usize> {
     let mut n = 0;
     for a in e.attributes().flatten() {
         let key = a.key.local_name();
         match key.as_ref() {
             "d" => {
-                n += svgtypes::PathParser::from(a.value.as_ref()).count();
+                for seg in svgtypes::PathParser::from(a.value.as_ref()) {
+                    n += 1;
+                    if let Ok(svgtypes::PathSegment::EllipticalArc { rx, ry, .. }) = seg {
+                        let r = rx.abs().max(ry.abs());
+                        if !(r <= MAX_ARC_RADIUS) {
+                            return Err(crate::error::Error::input(
+                                name,
+                                format!(
+                                    "path data has an arc of radius {r:e}, too large to draw \
+                                     (at most {MAX_ARC_RADIUS:e})"
+                                ),
+                            ));
+                        }
+                    }
+                }
             }
             "points" => {
                 n += svgtypes::PointsParser::from(a.value.as_ref()).count();
@@ -74,7 +92,7 @@ fn path_segments(e: &BytesStart<'_>) -> usize {
             _ => {}
         }
     }
-    n
+    Ok(n)
 }
 
 /// The non-data references of `<image>` and `<feImage>` elements, with their ids.

@@ -354,7 +354,12 @@ fn shape_curves_lie_on_the_artworks_contours() {
             (&a.source, &a.c.meshes.source),
             (&target, &a.c.meshes.target),
         ] {
-            let contours = crmorph::auto::contours::contours(scene, 1e-3 * a.c.tolerances.diagonal);
+            let contours = crmorph::auto::contours::contours(
+                scene,
+                1e-3 * a.c.tolerances.diagonal,
+                &crmorph::input::Limits::default(),
+            )
+            .unwrap();
             for curve in a.c.meshes.curves.iter().filter(|k| k.name != "still-frame") {
                 for &v in &curve.vertices {
                     let p = mesh[v as usize];

@@ -5,6 +5,7 @@ mod common;
 mod compatible;
 mod errors;
 mod export;
+mod far;
 mod folds;
 mod hostile;
 mod motion;
