@@ -480,7 +480,9 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         Format::Json => crmorph::json::meshes_json(&c.meshes).into_bytes(),
         Format::Png => {
             progress.stage("rendering");
-            crmorph::render::svg_png(&picture(), a.width)?
+            let max_pixels = a.inputs.safety.policy().limits.pixels;
+            let file = a.inputs.source.display().to_string();
+            crmorph::render::svg_png(&picture(), a.width, &file, max_pixels)?
         }
         _ => picture().into_bytes(),
     };
@@ -530,13 +532,15 @@ fn motion(
 }
 
 /// Reads both drawings' artwork and binds it to the meshes with the motion of `method` and
-/// `steering`.
+/// `steering`. With `raster`, the frame size (the drawing's own or `--size`, and again after
+/// `--view fit` grew it) is checked against `--max-pixels` before any work at that size.
 fn build_morph(
     inputs: &Inputs,
     method: MethodArg,
     look: &Look,
     steering: &Steering,
     always_skeleton: bool,
+    raster: bool,
     progress: &Progress,
 ) -> Result<Morph> {
     let (s, t, c, paths) = compatible(inputs, progress)?;
@@ -549,6 +553,11 @@ fn build_morph(
         opts.size = (w, h);
     }
     opts.background = look.background;
+    opts.max_pixels = inputs.safety.policy().limits.pixels;
+    let source_file = inputs.source.display().to_string();
+    if raster {
+        opts.check_pixels(&source_file)?;
+    }
     // Paths morphing as one shape follow the plain interpolation's mesh; with the disc
     // method only (the baselines are for comparing the mesh motion). In marked-up drawings
     // they are the artwork paths that are their own boundary or feature curve.
@@ -570,6 +579,9 @@ fn build_morph(
         ViewArg::Source => None,
     };
     let fitted = morph.frame_options().fitted(drawn, look.padding, look.size);
+    if raster {
+        fitted.check_pixels(&source_file)?;
+    }
     morph.set_frame_options(fitted);
     Ok(morph)
 }
@@ -603,7 +615,16 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         )
         .into_bytes()
     } else {
-        let morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
+        let raster = fmt == Format::Png;
+        let morph = build_morph(
+            &a.inputs,
+            a.method,
+            &a.look,
+            &a.steering,
+            false,
+            raster,
+            progress,
+        )?;
         progress.stage("rendering");
         match fmt {
             Format::Svg => morph.svg_at(a.at)?.into_bytes(),
@@ -641,7 +662,17 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
             frame_files.push(p);
         }
     }
-    let mut morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
+    let raster = matches!(fmt, Format::Gif | Format::Png)
+        || (a.frames_dir.is_some() && a.frame_format == FrameFormat::Png);
+    let mut morph = build_morph(
+        &a.inputs,
+        a.method,
+        &a.look,
+        &a.steering,
+        false,
+        raster,
+        progress,
+    )?;
     progress.stage("rendering");
     // Frames done / total: every format but JSON renders each frame (or keyframe) once, and
     // --frames-dir once more.
@@ -734,6 +765,7 @@ pub(crate) fn skeleton(a: &SkeletonArgs, progress: &Progress) -> Result<()> {
         &a.look,
         &a.steering,
         true,
+        false,
         progress,
     )?;
     let Motion::Skeleton(control) = morph.motion() else {

@@ -110,7 +110,10 @@ impl Limit {
                 self.counts()
             ),
         )
-        .with_hint(format!("raise it with {} if you trust the file", self.flag()))
+        .with_hint(format!(
+            "raise it with {} if you trust the file",
+            self.flag()
+        ))
     }
 }
 
