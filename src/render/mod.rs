@@ -16,12 +16,14 @@ pub mod svg_frame;
 mod tree;
 pub mod view;
 
+pub(crate) use animated::write_animated_svg;
 pub use animated::{animated_svg, animated_svg_layers};
 pub use raster::{
     encode_png, frame_pixmap, frame_pixmap_layers, frame_png, render_scene, straight_rgba, svg_png,
 };
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
-pub(crate) use tree::fixed;
+pub(crate) use svg_frame::{frame_tree, Mode};
+pub(crate) use tree::{fixed, Node};
 pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};
