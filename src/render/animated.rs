@@ -302,10 +302,13 @@ fn merge(
     let mut out = Node::new(&node.name, Vec::new());
     let mut animations = Vec::new();
     for (ai, (key, _)) in node.attrs.iter().enumerate() {
-        // Each keyframe's value once (yoyo shows most of them twice).
-        let each: Vec<Value> = packed.iter().map(|k| k[at + ai].value()).collect();
-        let values: Vec<&Value> = ctx.order.iter().map(|&k| &each[k]).collect();
-        let (stat, anims) = attribute(key, values[0], &values, ctx);
+        // The values in playback order, unpacked for this attribute alone.
+        let values: Vec<Value> = ctx
+            .order
+            .iter()
+            .map(|&k| packed[k][at + ai].value())
+            .collect();
+        let (stat, anims) = attribute(key, values, ctx);
         // The static value from the base where it has one of the same kind.
         let stat = match (base.map(|b| &b.attrs[ai].1), &stat) {
             (Some(Value::Path { path, decimals, .. }), Value::Text(_)) => {
@@ -341,26 +344,24 @@ fn merge(
 }
 
 /// The static value of one attribute and the animations it needs.
-fn attribute(
-    key: &'static str,
-    v0: &Value,
-    values: &[&Value],
-    ctx: &Context,
-) -> (Value, Vec<Node>) {
-    match v0 {
+///
+/// `values` are the attribute's values in the keyframes of the playback order (the first is
+/// the static one); they are consumed, so that an outline's keyframes are held once while their
+/// curves are fitted (the paths of every keyframe of one element are the largest thing the
+/// merge holds).
+fn attribute(key: &'static str, values: Vec<Value>, ctx: &Context) -> (Value, Vec<Node>) {
+    let v0 = values[0].clone();
+    match &v0 {
         Value::Path { decimals, fit, .. } => {
             let paths: Vec<BezPath> = values
-                .iter()
+                .into_iter()
                 .map(|v| match v {
-                    Value::Path { path, .. } => path.clone(),
+                    Value::Path { path, .. } => path,
                     _ => BezPath::new(),
                 })
                 .collect();
             let tol = fit.unwrap_or(ctx.tol);
-            let paths = match fit {
-                Some(t) => fit_paths(&paths, *t),
-                None => paths,
-            };
+            let paths = fitted(paths, *fit);
             let stat = Value::Text(path_data(&paths[0], *decimals));
             let nums: Vec<Vec<f64>> = paths.iter().map(coordinates).collect();
             // Unchanged (to the written precision) in every keyframe: no animation.
@@ -400,13 +401,22 @@ fn attribute(
             let nums: Option<Vec<Vec<f64>>> = values.iter().map(|v| numbers(v)).collect();
             let anim = match nums {
                 Some(nums) if nums.iter().all(|n| n.len() == nums[0].len()) => {
-                    let kept = keep(&nums, tolerance(v0, ctx));
+                    let kept = keep(&nums, tolerance(&v0, ctx));
                     animate(key, &kept, |k| texts[k].clone(), ctx, false)
                 }
                 _ => discrete(key, &texts, ctx),
             };
             (values[0].clone(), vec![anim])
         }
+    }
+}
+
+/// `paths` with curves fitted within `fit` in every keyframe (unchanged without a tolerance);
+/// the polylines are dropped as soon as the fit is made.
+fn fitted(paths: Vec<BezPath>, fit: Option<f64>) -> Vec<BezPath> {
+    match fit {
+        Some(t) => fit_paths(&paths, t),
+        None => paths,
     }
 }
 
