@@ -725,18 +725,10 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     };
     let out = &a.inputs.output;
     match fmt {
-        Format::Json => {
-            let ts = timeline.morph_times();
-            let frames = morph.vertex_frames(&timeline);
-            let json = crmorph::json::frames_json(morph.meshes(), &ts, &frames);
-            if json.len() > 1 << 31 {
-                bail!(
-                    "{}: the output would be larger than 2 GiB; use fewer frames",
-                    out.display()
-                );
-            }
-            write_atomic(out, json.as_bytes())?;
-        }
+        Format::Json => write_streamed(out, |w| {
+            w.cap(1 << 31, "use fewer frames");
+            morph.write_frames_json(&timeline, w)
+        })?,
         Format::Svg => write_streamed(out, |w| morph.write_animated_svg(&timeline, w))?,
         Format::Gif => write_streamed(out, |w| morph.write_gif(&timeline, w))?,
         Format::Png => write_streamed(out, |w| morph.write_apng(&timeline, w))?,

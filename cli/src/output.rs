@@ -71,9 +71,22 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 pub(crate) struct Sink<'a> {
     file: std::io::BufWriter<&'a mut std::fs::File>,
     error: Option<std::io::Error>,
+    /// Bytes that may still be written, and why no more (see [`Sink::cap`]).
+    cap: Option<(u64, String)>,
 }
 
 impl Sink<'_> {
+    /// Refuses to write more than `limit` bytes: an output too large for its readers (JSON
+    /// over 2 GiB) fails as it grows, with `hint`, rather than once it is complete.
+    pub(crate) fn cap(&mut self, limit: u64, hint: &str) {
+        let size = match limit {
+            l if l >= 1 << 30 && l % (1 << 30) == 0 => format!("{} GiB", l >> 30),
+            l => format!("{l} bytes"),
+        };
+        let why = format!("the output would be larger than {size}; {hint}");
+        self.cap = Some((limit, why));
+    }
+
     fn record<T>(&mut self, r: std::io::Result<T>) -> std::io::Result<T> {
         if let Err(e) = &r {
             if self.error.is_none() {
@@ -86,7 +99,16 @@ impl Sink<'_> {
 
 impl Write for Sink<'_> {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if let Some((left, why)) = &mut self.cap {
+            if buf.len() as u64 > *left {
+                let e = Err(std::io::Error::other(why.clone()));
+                return self.record(e);
+            }
+        }
         let r = self.file.write(buf);
+        if let (Ok(n), Some((left, _))) = (&r, &mut self.cap) {
+            *left -= *n as u64;
+        }
         self.record(r)
     }
 
@@ -144,6 +166,7 @@ pub(crate) fn write_streamed(
     let mut sink = Sink {
         file: std::io::BufWriter::new(tmp.file.as_file_mut()),
         error: None,
+        cap: None,
     };
     let written = write(&mut sink).and_then(|()| {
         sink.flush()
@@ -328,6 +351,27 @@ mod tests {
         assert_eq!(n, 1);
         assert_eq!(Format::of(Path::new("x.SVG")), Some(Format::Svg));
         assert_eq!(Format::of(Path::new("x.txt")), None);
+    }
+
+    #[test]
+    fn a_capped_output_fails_as_it_grows_and_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("big.json");
+        let e = write_streamed(&p, |w| {
+            w.cap(10, "use fewer frames");
+            for _ in 0..4 {
+                w.write_all(b"12345")
+                    .map_err(|_| crmorph::Error::internal("write failed"))?;
+            }
+            Ok(())
+        })
+        .unwrap_err();
+        let e = format!("{e:#}");
+        assert!(
+            e.contains("big.json: cannot write: the output would be larger than 10 bytes"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }
 
     fn stage(dir: &Path, files: &[PathBuf], contents: &[Vec<u8>]) -> FramesDir {

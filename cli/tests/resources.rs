@@ -248,16 +248,20 @@ fn slow_morph_in(dir: &Path, extra: &[&str]) -> (Child, Instant, String) {
     ]);
     args.extend(extra.iter().map(OsString::from));
     let start = Instant::now();
-    let child = spawn(&args);
+    let mut child = spawn(&args);
     loop {
         if let Some(t) = temporary_in(dir) {
             return (child, start, t);
         }
-        assert!(
-            start.elapsed() < Duration::from_secs(20),
-            "no temporary appeared: {:?}",
-            listing(dir)
-        );
+        if start.elapsed() > Duration::from_secs(20) || child.try_wait().unwrap().is_some() {
+            let _ = child.kill();
+            let out = child.wait_with_output().unwrap();
+            panic!(
+                "no temporary appeared: {:?}, {}",
+                listing(dir),
+                stderr(&out)
+            );
+        }
         std::thread::sleep(Duration::from_millis(5));
     }
 }

@@ -10,7 +10,7 @@ use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::apng::write_apng;
 use crate::export::gif::write_gif;
-use crate::export::stream::in_order;
+use crate::export::stream::{chunk_len, in_order};
 use crate::export::{preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
@@ -333,6 +333,30 @@ impl Morph {
     /// The mesh at every frame of `timeline` (at its eased times), computed in parallel.
     pub fn vertex_frames(&self, timeline: &Timeline) -> Vec<Vec<Point>> {
         self.motion.frames(&timeline.sanitized().morph_times())
+    }
+
+    /// Every frame's mesh as the JSON of [`crate::json::frames_json`] (byte for byte), written
+    /// to `out` as the meshes are solved, a chunk of frames at a time.
+    pub fn write_frames_json(&self, timeline: &Timeline, mut out: impl Write) -> Result<()> {
+        let ts = timeline.sanitized().morph_times();
+        let io = |e: std::io::Error| crate::Error::internal(format!("writing JSON failed: {e}"));
+        out.write_all(b"{\"frames\":[").map_err(io)?;
+        for (c, chunk) in ts.chunks(chunk_len()).enumerate() {
+            let meshes = self.motion.frames(chunk);
+            let docs: Vec<String> = meshes
+                .par_iter()
+                .zip(chunk)
+                .map(|(v, &t)| crate::json::frame_json(&self.meshes, t, v))
+                .collect();
+            for (k, doc) in docs.iter().enumerate() {
+                if c > 0 || k > 0 {
+                    out.write_all(b",").map_err(io)?;
+                }
+                out.write_all(doc.as_bytes()).map_err(io)?;
+            }
+        }
+        out.write_all(b"]}").map_err(io)?;
+        out.flush().map_err(io)
     }
 
     /// The source and target artwork placed in the mesh at `t`: the exact input drawings at

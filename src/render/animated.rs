@@ -398,7 +398,7 @@ fn attribute(key: &'static str, values: Vec<Value>, ctx: &Context) -> (Value, Ve
                 return (values[0].clone(), Vec::new());
             }
             // Numbers and colours interpolate; text, or numbers whose count changes, switch.
-            let nums: Option<Vec<Vec<f64>>> = values.iter().map(|v| numbers(v)).collect();
+            let nums: Option<Vec<Vec<f64>>> = values.iter().map(numbers).collect();
             let anim = match nums {
                 Some(nums) if nums.iter().all(|n| n.len() == nums[0].len()) => {
                     let kept = keep(&nums, tolerance(&v0, ctx));
