@@ -683,9 +683,9 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     };
     let dir_reports = match frame_files.is_empty() {
         true => 0,
-        false => Export::Frames.reports(&timeline),
+        false => morph.reports(Export::Frames, &timeline),
     };
-    let total = main.map_or(0, |e| e.reports(&timeline)) + dir_reports;
+    let total = main.map_or(0, |e| morph.reports(e, &timeline)) + dir_reports;
     if total > 0 {
         progress.frames(total);
         let then = match fmt {

@@ -65,11 +65,12 @@ impl Motion {
     }
 }
 
-/// The exports of a [`Morph`] that report frames to its [`Morph::on_frame`] hook.
+/// The exports of a [`Morph`] that report frames to its [`Morph::on_frame`] hook (see
+/// [`Morph::reports`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Export {
-    /// [`Morph::gif`]: every frame shown, twice (its colours, then its indices; a yoyo shows
-    /// most frames twice, so three times).
+    /// [`Morph::gif`]: every frame shown, twice but for the first few (its colours, then its
+    /// indices; a yoyo shows most frames twice, so three times).
     Gif,
     /// [`Morph::apng`]: every frame shown (most twice for a yoyo).
     Apng,
@@ -77,25 +78,6 @@ pub enum Export {
     Frames,
     /// [`Morph::animated_svg`] and [`Morph::html`]: every keyframe once.
     AnimatedSvg,
-}
-
-impl Export {
-    /// How many times this export of `timeline` calls the [`Morph::on_frame`] hook: the total
-    /// of a progress bar.
-    pub fn reports(self, timeline: &Timeline) -> u64 {
-        use crate::export::gif::{playback_schedule, APNG_MIN_DELAY, GIF_MIN_DELAY};
-        let tl = timeline.sanitized();
-        let shown = |min| playback_schedule(&tl, min);
-        (match self {
-            Export::Gif => {
-                let s = shown(GIF_MIN_DELAY);
-                let used: std::collections::BTreeSet<usize> = s.iter().map(|x| x.frame).collect();
-                used.len() + s.len()
-            }
-            Export::Apng => shown(APNG_MIN_DELAY).len(),
-            Export::Frames | Export::AnimatedSvg => tl.frames,
-        }) as u64
-    }
 }
 
 /// The compatible meshes, their motion and the bound artwork, with the frame settings.
@@ -173,11 +155,23 @@ impl Morph {
     /// [`Morph::gif`] and [`Morph::apng`] (and their streaming forms) render and every keyframe
     /// that [`Morph::animated_svg`] (and so [`Morph::html`]) builds, as soon as it is done —
     /// from the worker threads, in no particular order. The streaming encoders render some
-    /// frames more than once; [`Export::reports`] says how many calls an export makes in all.
+    /// frames more than once; [`Morph::reports`] says how many calls an export makes in all.
     /// For progress reports on long exports: a 600-frame GIF at 1024² takes half a minute.
     /// Replaces an earlier hook.
     pub fn on_frame(&mut self, hook: impl Fn() + Send + Sync + 'static) {
         self.on_frame = Some(Arc::new(hook));
+    }
+
+    /// How many times `export` of `timeline` calls the [`Morph::on_frame`] hook at these frame
+    /// options: the total of a progress bar.
+    pub fn reports(&self, export: Export, timeline: &Timeline) -> u64 {
+        use crate::export::gif::{gif_renders, playback_schedule, APNG_MIN_DELAY};
+        let tl = timeline.sanitized();
+        (match export {
+            Export::Gif => gif_renders(&tl, self.frame.size),
+            Export::Apng => playback_schedule(&tl, APNG_MIN_DELAY).len(),
+            Export::Frames | Export::AnimatedSvg => tl.frames,
+        }) as u64
     }
 
     /// Reports one finished frame to the [`Morph::on_frame`] hook, if any.
@@ -657,8 +651,12 @@ mod tests {
         m.gif(&tl).unwrap();
         m.svg_frames(&tl).unwrap();
         m.animated_svg(&tl).unwrap();
-        let reports = [Export::Gif, Export::Frames, Export::AnimatedSvg].map(|e| e.reports(&tl));
-        assert_eq!(reports, [6, 3, 3], "a GIF renders each frame twice");
+        let reports = [Export::Gif, Export::Frames, Export::AnimatedSvg].map(|e| m.reports(e, &tl));
+        assert_eq!(
+            reports,
+            [3, 3, 3],
+            "a short GIF keeps its frames between its passes"
+        );
         let n = done.load(std::sync::atomic::Ordering::Relaxed) as u64;
         assert_eq!(n, reports.iter().sum::<u64>());
         assert_eq!(anim, m.animated_svg(&tl).unwrap(), "deterministic");

@@ -42,7 +42,7 @@ mod fidelity;
 mod palette;
 
 use std::borrow::Cow;
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::io::Write;
 
 use rayon::prelude::*;
@@ -212,9 +212,10 @@ pub fn encode_gif(
 ///
 /// `render(i)` is frame `i` of `timeline`, `size` pixels. It is called from rayon's threads,
 /// in two passes over the frames that are shown: the colours of every frame (for the global
-/// palette) and then, in playback order, their indices, so a frame is rendered twice (three
-/// times for the frames a yoyo shows twice) — the price of a palette shared by all frames
-/// without keeping them all. The bytes are those of [`encode_gif`] on the same frames.
+/// palette) and then, in playback order, their indices. The first 64 frames (at most 32 MiB)
+/// are kept between the passes; the others are rendered twice (three times for the frames a
+/// yoyo shows twice) — the price of a palette shared by all frames without keeping them all.
+/// The bytes are those of [`encode_gif`] on the same frames.
 ///
 /// Errors: those of `render` and of `out`, and (internal) a frame of another size or larger
 /// than GIF's 65 535 px.
@@ -250,23 +251,27 @@ pub fn write_gif<'f, W: Write>(
         Ok(composite_rgb(&frame, bg))
     };
 
-    // Two passes over the frames that are shown (yoyo shows most of them twice), rendering
-    // each one again rather than keeping them all: colour statistics, then indices.
-    let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
-    let used: Vec<usize> = used.into_iter().collect();
+    // Two passes over the frames that are shown (yoyo shows most of them twice): colour
+    // statistics, then indices. The first few frames are kept between the passes (all of a
+    // short animation); the others are rendered again rather than kept.
+    let used = shown_frames(&schedule);
+    let kept = &used[..kept_frames(used.len(), size)];
     let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
     let mut stats: Vec<FrameColours> = Vec::with_capacity(used.len());
+    let mut cache: HashMap<usize, Vec<u8>> = HashMap::with_capacity(kept.len());
     in_order(
         &used,
         |&i| {
             let rgb = rgb(i)?;
-            Ok(FrameColours {
+            let colours = FrameColours {
                 distinct: frame_colours(&rgb, 256),
                 sample: sample_rgba(&rgb, per_frame, i as u64),
-            })
+            };
+            Ok((i, colours, kept.contains(&i).then_some(rgb)))
         },
-        |c| {
+        |(i, c, rgb)| {
             stats.push(c);
+            cache.extend(rgb.map(|rgb| (i, rgb)));
             Ok(())
         },
     )?;
@@ -295,7 +300,13 @@ pub fn write_gif<'f, W: Write>(
     let mut open: Option<Piece> = None;
     in_order(
         &shown,
-        |&(i, delay)| Ok((Mapped::new(&rgb(i)?, wu, &global, i), delay)),
+        |&(i, delay)| {
+            let mapped = match cache.get(&i) {
+                Some(rgb) => Mapped::new(rgb, wu, &global, i),
+                None => Mapped::new(&rgb(i)?, wu, &global, i),
+            };
+            Ok((mapped, delay))
+        },
         |(mapped, delay)| {
             match &mut open {
                 Some(p) if !(0..wu * hu).any(|q| differs(&p.mapped, &mapped, q)) => {
@@ -319,6 +330,37 @@ pub fn write_gif<'f, W: Write>(
         .map_err(err)?
         .flush()
         .map_err(|e| Error::internal(format!("GIF encoding failed: {e}")))
+}
+
+/// At most this many frames are kept between the GIF encoder's two passes…
+const KEPT_FRAMES: usize = 64;
+
+/// …and at most this many bytes of them (composited RGB).
+const KEPT_BYTES: usize = 32 << 20;
+
+/// The frames a schedule shows, each once, in frame order.
+fn shown_frames(schedule: &[Shown]) -> Vec<usize> {
+    let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
+    used.into_iter().collect()
+}
+
+/// How many of the `used` frames shown (the first ones) stay in memory between the two passes
+/// at `size`: all of a default 60-frame animation at sizes up to about 400², so that it is
+/// rendered once, and never more than [`KEPT_BYTES`], so that memory does not grow with the
+/// frame count.
+fn kept_frames(used: usize, size: (u32, u32)) -> usize {
+    let bytes = (size.0 as usize * size.1 as usize * 3).max(1);
+    used.min(KEPT_FRAMES).min(KEPT_BYTES / bytes)
+}
+
+/// How many frames [`write_gif`] renders for `timeline` at `size`: each frame shown in the
+/// first pass, and in the second every frame shown (yoyo: most twice) but those kept.
+pub(crate) fn gif_renders(timeline: &Timeline, size: (u32, u32)) -> usize {
+    let schedule = playback_schedule(timeline, GIF_MIN_DELAY);
+    let used = shown_frames(&schedule);
+    let kept = &used[..kept_frames(used.len(), size)];
+    let again = schedule.iter().filter(|s| !kept.contains(&s.frame)).count();
+    used.len() + again
 }
 
 /// A frame shown for `delay` centiseconds.
@@ -743,6 +785,45 @@ mod tests {
 
     fn straight(p: &Pixmap) -> Vec<u8> {
         crate::render::straight_rgba(p)
+    }
+
+    #[test]
+    fn frames_beyond_those_kept_between_the_passes_are_rendered_again_alike() {
+        // More frames shown than are kept between the passes: the later ones are rendered a
+        // second time, and every frame still decodes to itself (two colours: exact palette).
+        let n = KEPT_FRAMES + 40;
+        let frames: Vec<Pixmap> = (0..n)
+            .map(|k| {
+                frame(
+                    40,
+                    4,
+                    (k % 30) as f32,
+                    (k % 30 + 6) as f32,
+                    [0, 90, 200, 255],
+                )
+            })
+            .collect();
+        let tl = timeline(n, 10.0, Playback::Once);
+        assert_eq!(gif_renders(&tl, (40, 4)), n + n - KEPT_FRAMES);
+        let renders = std::sync::atomic::AtomicUsize::new(0);
+        let mut bytes = Vec::new();
+        let render = |i: usize| {
+            renders.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Ok(Cow::Borrowed(&frames[i]))
+        };
+        write_gif((40, 4), render, &tl, None, &mut bytes).unwrap();
+        assert_eq!(renders.into_inner(), gif_renders(&tl, (40, 4)));
+        assert_eq!(bytes, encode_gif(&frames, &tl, None).unwrap());
+        let d = decode(&bytes);
+        assert_eq!(d.canvases.len(), n);
+        for (k, canvas) in d.canvases.iter().enumerate() {
+            let want = composite_rgb(&frames[k], [255; 3]);
+            let rgb: Vec<u8> = canvas
+                .chunks_exact(4)
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            assert_eq!(rgb, want, "frame {k}");
+        }
     }
 
     #[test]
