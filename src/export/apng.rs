@@ -110,8 +110,10 @@ pub fn write_apng<'f, W: Write + Seek>(
         size: (w as usize, h as usize),
     };
     let mut open: Option<(Cow<'f, Pixmap>, usize)> = None;
+    let per_chunk = chunk_len(4 * w as usize * h as usize);
     in_order(
         &shown,
+        per_chunk,
         |&(i, intervals)| Ok((frame(i)?, intervals)),
         |(px, intervals)| {
             match &mut open {
@@ -119,7 +121,7 @@ pub fn write_apng<'f, W: Write + Seek>(
                 _ => {
                     if let Some(done) = open.replace((px, intervals)) {
                         writer.ready.push(done);
-                        if writer.ready.len() >= chunk_len() {
+                        if writer.ready.len() >= per_chunk {
                             writer.flush(&mut out)?;
                         }
                     }

@@ -335,7 +335,7 @@ impl Morph {
         let ts = timeline.sanitized().morph_times();
         let io = |e: std::io::Error| crate::Error::internal(format!("writing JSON failed: {e}"));
         out.write_all(b"{\"frames\":[").map_err(io)?;
-        for (c, chunk) in ts.chunks(chunk_len()).enumerate() {
+        for (c, chunk) in ts.chunks(chunk_len(0)).enumerate() {
             let meshes = self.motion.frames(chunk);
             let docs: Vec<String> = meshes
                 .par_iter()
@@ -399,7 +399,7 @@ impl Morph {
         timeline: &Timeline,
         sink: impl FnMut(usize, String) -> Result<()>,
     ) -> Result<()> {
-        self.each_frame(timeline, |t| self.svg_at(t), sink)
+        self.each_frame(timeline, 0, |t| self.svg_at(t), sink)
     }
 
     /// Hands frame `i` of `timeline` rendered to `sink(i, pixmap)`, in frame order, like
@@ -409,12 +409,16 @@ impl Morph {
         timeline: &Timeline,
         sink: impl FnMut(usize, Pixmap) -> Result<()>,
     ) -> Result<()> {
-        self.each_frame(timeline, |t| self.pixmap_at(t), sink)
+        let bytes = 4 * self.frame.pixels() as usize;
+        self.each_frame(timeline, bytes, |t| self.pixmap_at(t), sink)
     }
 
+    /// `f(t)` of every frame of `timeline` to `sink`, in order, in chunks of frames of
+    /// `item_bytes` each (see [`chunk_len`]).
     fn each_frame<T: Send>(
         &self,
         timeline: &Timeline,
+        item_bytes: usize,
         f: impl Fn(f64) -> Result<T> + Sync + Send,
         mut sink: impl FnMut(usize, T) -> Result<()>,
     ) -> Result<()> {
@@ -422,6 +426,7 @@ impl Morph {
         let frames: Vec<usize> = (0..ts.len()).collect();
         in_order(
             &frames,
+            chunk_len(item_bytes),
             |&i| {
                 let frame = f(ts[i]);
                 self.frame_done();

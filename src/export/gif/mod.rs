@@ -259,8 +259,10 @@ pub fn write_gif<'f, W: Write>(
     let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
     let mut stats: Vec<FrameColours> = Vec::with_capacity(used.len());
     let mut cache: HashMap<usize, Vec<u8>> = HashMap::with_capacity(kept.len());
+    let chunk = chunk_len(4 * wu * hu);
     in_order(
         &used,
+        chunk,
         |&i| {
             let rgb = rgb(i)?;
             let colours = FrameColours {
@@ -300,6 +302,7 @@ pub fn write_gif<'f, W: Write>(
     let mut open: Option<Piece> = None;
     in_order(
         &shown,
+        chunk,
         |&(i, delay)| {
             let mapped = match cache.get(&i) {
                 Some(rgb) => Mapped::new(rgb, wu, &global, i),
@@ -315,7 +318,7 @@ pub fn write_gif<'f, W: Write>(
                 _ => {
                     if let Some(done) = open.replace(Piece { mapped, delay }) {
                         writer.ready.push(done);
-                        if writer.ready.len() >= chunk_len() {
+                        if writer.ready.len() >= chunk {
                             writer.flush(&mut enc)?;
                         }
                     }
