@@ -9,12 +9,12 @@ use crmorph::artwork::{Rgba, Scene};
 use crmorph::auto::geometric::MorphingPath;
 use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
-use crmorph::export::{Easing, Morph, Motion, Playback, Timeline};
+use crmorph::export::{Easing, Export, Morph, Motion, Playback, Timeline};
 use crmorph::render::{encode_png, FrameOptions, Padding};
 use crmorph::rigid::{Interpolator, Method};
 use crmorph::skeleton::{pose_svg, Pose, Skeleton, SkeletonControl};
 
-use crate::output::{refuse_overwriting_inputs, write_atomic, Format, FramesDir};
+use crate::output::{refuse_overwriting_inputs, write_atomic, write_streamed, Format, FramesDir};
 use crate::progress::Progress;
 
 /// Which drawing is triangulated and mapped onto the other.
@@ -478,7 +478,9 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         Format::Json => crmorph::json::meshes_json(&c.meshes).into_bytes(),
         Format::Png => {
             progress.stage("rendering");
-            crmorph::render::svg_png(&picture(), a.width)?
+            let max_pixels = a.inputs.safety.policy().limits.pixels;
+            let file = a.inputs.source.display().to_string();
+            crmorph::render::svg_png(&picture(), a.width, &file, max_pixels)?
         }
         _ => picture().into_bytes(),
     };
@@ -528,13 +530,15 @@ fn motion(
 }
 
 /// Reads both drawings' artwork and binds it to the meshes with the motion of `method` and
-/// `steering`.
+/// `steering`. With `raster`, the frame size (the drawing's own or `--size`, and again after
+/// `--view fit` grew it) is checked against `--max-pixels` before any work at that size.
 fn build_morph(
     inputs: &Inputs,
     method: MethodArg,
     look: &Look,
     steering: &Steering,
     always_skeleton: bool,
+    raster: bool,
     progress: &Progress,
 ) -> Result<Morph> {
     let (s, t, c, paths) = compatible(inputs, progress)?;
@@ -547,6 +551,11 @@ fn build_morph(
         opts.size = (w, h);
     }
     opts.background = look.background;
+    opts.max_pixels = inputs.safety.policy().limits.pixels;
+    let source_file = inputs.source.display().to_string();
+    if raster {
+        opts.check_pixels(&source_file)?;
+    }
     // Paths morphing as one shape follow the plain interpolation's mesh; with the disc
     // method only (the baselines are for comparing the mesh motion). In marked-up drawings
     // they are the artwork paths that are their own boundary or feature curve.
@@ -568,6 +577,9 @@ fn build_morph(
         ViewArg::Source => None,
     };
     let fitted = morph.frame_options().fitted(drawn, look.padding, look.size);
+    if raster {
+        fitted.check_pixels(&source_file)?;
+    }
     morph.set_frame_options(fitted);
     Ok(morph)
 }
@@ -601,7 +613,16 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         )
         .into_bytes()
     } else {
-        let morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
+        let raster = fmt == Format::Png;
+        let morph = build_morph(
+            &a.inputs,
+            a.method,
+            &a.look,
+            &a.steering,
+            false,
+            raster,
+            progress,
+        )?;
         progress.stage("rendering");
         match fmt {
             Format::Svg => morph.svg_at(a.at)?.into_bytes(),
@@ -639,71 +660,86 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
             frame_files.push(p);
         }
     }
-    let mut morph = build_morph(&a.inputs, a.method, &a.look, &a.steering, false, progress)?;
+    let raster = matches!(fmt, Format::Gif | Format::Png)
+        || (a.frames_dir.is_some() && a.frame_format == FrameFormat::Png);
+    let mut morph = build_morph(
+        &a.inputs,
+        a.method,
+        &a.look,
+        &a.steering,
+        false,
+        raster,
+        progress,
+    )?;
     progress.stage("rendering");
-    // Frames done / total: every format but JSON renders each frame (or keyframe) once, and
-    // --frames-dir once more.
-    let per_output = |rendered: bool| if rendered { timeline.frames as u64 } else { 0 };
-    let total = per_output(fmt != Format::Json) + per_output(!frame_files.is_empty());
+    // Frames done / total, over both outputs (the frames folder is made first).
+    let main = match fmt {
+        Format::Gif => Some(Export::Gif),
+        Format::Png => Some(Export::Apng),
+        Format::Svg | Format::Html => Some(Export::AnimatedSvg),
+        _ => None,
+    };
+    let dir_reports = match frame_files.is_empty() {
+        true => 0,
+        false => morph.reports(Export::Frames, &timeline),
+    };
+    let total = main.map_or(0, |e| morph.reports(e, &timeline)) + dir_reports;
     if total > 0 {
         progress.frames(total);
         let then = match fmt {
             Format::Gif | Format::Png => "encoding",
             _ => "assembling",
         };
-        morph.on_frame(progress.frame_counter(per_output(fmt != Format::Json), then));
+        morph.on_frame(progress.frame_counter(total, then));
     }
-    let bytes = match fmt {
-        Format::Json => {
-            let ts = timeline.morph_times();
-            let frames = morph.vertex_frames(&timeline);
-            let json = crmorph::json::frames_json(morph.meshes(), &ts, &frames);
-            if json.len() > 1 << 31 {
-                bail!(
-                    "{}: the output would be larger than 2 GiB; use fewer frames",
-                    a.inputs.output.display()
-                );
+    // The frames go into a staging folder first, one by one as they are made, and into
+    // --frames-dir only once the main output is in place: a failure leaves neither partial
+    // output nor frames behind.
+    let staged = match &a.frames_dir {
+        Some(dir) => {
+            let mut staged = FramesDir::create(dir)?;
+            let mut failed = None;
+            let mut keep = |i: usize, bytes: &[u8]| {
+                staged.add(&frame_files[i], bytes).map_err(|e| {
+                    failed = Some(e);
+                    crmorph::Error::internal("writing a frame failed")
+                })
+            };
+            let made = match a.frame_format {
+                FrameFormat::Svg => {
+                    morph.for_each_svg_frame(&timeline, |i, svg| keep(i, svg.as_bytes()))
+                }
+                FrameFormat::Png => {
+                    morph.for_each_pixmap_frame(&timeline, |i, px| keep(i, &encode_png(&px)?))
+                }
+            };
+            if let Some(e) = failed {
+                return Err(e);
             }
-            json.into_bytes()
+            made?;
+            Some(staged)
         }
-        Format::Svg => morph.animated_svg(&timeline)?.into_bytes(),
-        Format::Gif => morph.gif(&timeline)?,
-        Format::Png => morph.apng(&timeline)?,
+        None => None,
+    };
+    let out = &a.inputs.output;
+    match fmt {
+        Format::Json => write_streamed(out, |w| {
+            w.cap(1 << 31, "use fewer frames");
+            morph.write_frames_json(&timeline, w)
+        })?,
+        Format::Svg => write_streamed(out, |w| morph.write_animated_svg(&timeline, w))?,
+        Format::Gif => write_streamed(out, |w| morph.write_gif(&timeline, w))?,
+        Format::Png => write_streamed(out, |w| morph.write_apng(&timeline, w))?,
         _ => {
             let title = format!(
                 "{} → {}",
                 file_name(&a.inputs.source),
                 file_name(&a.inputs.target)
             );
-            morph.html(&timeline, &title)?.into_bytes()
+            write_atomic(out, morph.html(&timeline, &title)?.as_bytes())?;
         }
-    };
-    // Every frame is made before anything is written: a failure leaves no partial output.
-    if !frame_files.is_empty() {
-        progress.stage("rendering --frames-dir");
     }
-    let frames: Vec<Vec<u8>> = match a.frame_format {
-        _ if frame_files.is_empty() => Vec::new(),
-        FrameFormat::Svg => morph
-            .svg_frames(&timeline)?
-            .into_iter()
-            .map(String::into_bytes)
-            .collect(),
-        FrameFormat::Png => morph
-            .pixmap_frames(&timeline)?
-            .iter()
-            .map(encode_png)
-            .collect::<crmorph::Result<_>>()?,
-    };
     progress.frames_done();
-    progress.stage("writing");
-    // The frames go into a staging folder first and into --frames-dir only once the main
-    // output is in place: a failure leaves neither partial output nor frames behind.
-    let staged = match &a.frames_dir {
-        Some(dir) => Some(FramesDir::stage(dir, &frame_files, &frames)?),
-        None => None,
-    };
-    write_atomic(&a.inputs.output, &bytes)?;
     match staged {
         Some(s) => s.commit(),
         None => Ok(()),
@@ -732,6 +768,7 @@ pub(crate) fn skeleton(a: &SkeletonArgs, progress: &Progress) -> Result<()> {
         &a.look,
         &a.steering,
         true,
+        false,
         progress,
     )?;
     let Motion::Skeleton(control) = morph.motion() else {

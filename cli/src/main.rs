@@ -6,6 +6,7 @@
 mod commands;
 mod demo;
 mod docs;
+mod interrupt;
 mod output;
 mod policy;
 mod progress;
@@ -73,6 +74,8 @@ enum Command {
 }
 
 fn run(cli: &Cli) -> anyhow::Result<()> {
+    // Without the handler a signal still stops the run, only leaving its temporary behind.
+    let _ = interrupt::install();
     let progress = Progress::new(cli.quiet);
     let r = match &cli.command {
         None => demo::run(std::path::Path::new("crmorph-demo"), &progress).map(|s| println!("{s}")),

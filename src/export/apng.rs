@@ -7,17 +7,21 @@
 //! the frame's image data), and after the first frame only the rectangle that changed is stored
 //! (blend `SOURCE` replaces it, alpha included; dispose `NONE` keeps the rest).
 
+use std::borrow::Cow;
+use std::io::{Cursor, Seek, SeekFrom, Write};
+
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
 use super::gif::{changed_rect, check_frames, playback_schedule};
+use super::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::render::straight_rgba;
 use crate::{Error, Result};
 
 /// Shortest delay browsers honour for animated images: Chromium and Firefox show frames with a
 /// delay of 10 ms or less for 100 ms, so shorter intervals skip frames instead.
-const APNG_MIN_DELAY: f64 = 0.011;
+pub(crate) const APNG_MIN_DELAY: f64 = 0.011;
 
 /// Encodes rendered frames as an animated PNG.
 ///
@@ -34,79 +38,186 @@ const APNG_MIN_DELAY: f64 = 0.011;
 /// Errors (internal): no frames, a frame count other than the timeline's, or frames of
 /// different sizes.
 pub fn encode_apng(frames: &[Pixmap], timeline: &Timeline) -> Result<Vec<u8>> {
-    let (w, h) = check_frames(frames, timeline)?;
+    let size = check_frames(frames, timeline)?;
+    let mut out = Cursor::new(Vec::new());
+    write_apng(size, |i| Ok(Cow::Borrowed(&frames[i])), timeline, &mut out)?;
+    Ok(out.into_inner())
+}
+
+/// [`encode_apng`] of frames rendered on demand, written to `out` as they are compressed:
+/// memory holds a chunk of frames at a time, however many the timeline has.
+///
+/// `render(i)` is frame `i` of `timeline`, `size` pixels, called from rayon's threads once per
+/// frame shown (twice for the frames a yoyo shows twice). `out` must seek: the frame count in
+/// `acTL`, known only once identical neighbours are merged, is written last, at its place after
+/// `IHDR`. The bytes are those of [`encode_apng`] on the same frames.
+///
+/// Errors: those of `render` and of `out`, and (internal) a frame of another size.
+pub fn write_apng<'f, W: Write + Seek>(
+    size: (u32, u32),
+    render: impl Fn(usize) -> Result<Cow<'f, Pixmap>> + Sync,
+    timeline: &Timeline,
+    mut out: W,
+) -> Result<()> {
+    let (w, h) = size;
     let tl = timeline.sanitized();
     let interval = tl.frame_interval();
+    let io = |e: std::io::Error| Error::internal(format!("APNG writing failed: {e}"));
+    let start = out.stream_position().map_err(io)?;
 
-    // (frame, intervals shown), identical neighbours merged.
-    let mut pieces: Vec<(usize, usize)> = Vec::new();
-    for s in playback_schedule(&tl, APNG_MIN_DELAY) {
-        match pieces.last_mut() {
-            Some((f, n)) if frames[*f].data() == frames[s.frame].data() => *n += s.intervals,
-            _ => pieces.push((s.frame, s.intervals)),
-        }
-    }
-
-    // Each piece's changed rectangle, compressed in parallel.
-    let (wu, hu) = (w as usize, h as usize);
-    let encoded: Vec<Result<(Rect, Vec<u8>)>> = pieces
-        .par_iter()
-        .enumerate()
-        .map(|(k, &(frame, _))| {
-            let prev = (k > 0).then(|| frames[pieces[k - 1].0].pixels());
-            let (x0, y0, x1, y1) = changed_rect(prev, frames[frame].pixels(), wu, hu);
-            let rgba = straight_rgba(&frames[frame]);
-            let mut crop = Vec::with_capacity(4 * (x1 - x0) * (y1 - y0));
-            for y in y0..y1 {
-                crop.extend_from_slice(&rgba[4 * (y * wu + x0)..4 * (y * wu + x1)]);
-            }
-            let rect = Rect {
-                x: x0 as u32,
-                y: y0 as u32,
-                w: (x1 - x0) as u32,
-                h: (y1 - y0) as u32,
-            };
-            Ok((rect, compressed_image_data(&crop, rect.w, rect.h)?))
-        })
-        .collect();
-
-    let mut out = Vec::with_capacity(encoded.iter().flatten().map(|e| e.1.len() + 64).sum());
-    out.extend_from_slice(b"\x89PNG\r\n\x1a\n");
+    let mut head = Vec::new();
+    head.extend_from_slice(b"\x89PNG\r\n\x1a\n");
     let mut ihdr = Vec::with_capacity(13);
     ihdr.extend_from_slice(&w.to_be_bytes());
     ihdr.extend_from_slice(&h.to_be_bytes());
     ihdr.extend_from_slice(&[8, 6, 0, 0, 0]); // 8-bit RGBA, deflate, adaptive filters, no interlace
-    chunk(&mut out, b"IHDR", &ihdr);
+    chunk(&mut head, b"IHDR", &ihdr);
+    let actl_at = head.len() as u64;
     let plays: u32 = if tl.repeats() { 0 } else { 1 };
-    let mut actl = (pieces.len() as u32).to_be_bytes().to_vec();
-    actl.extend_from_slice(&plays.to_be_bytes());
-    chunk(&mut out, b"acTL", &actl);
-    let mut sequence = 0u32;
-    for (k, (e, &(_, intervals))) in encoded.into_iter().zip(&pieces).enumerate() {
-        let (rect, data) = e?;
-        // Only the target's last interval (once / loop) can be shorter than the minimum.
-        let (num, den) = rational_seconds((intervals as f64 * interval).max(APNG_MIN_DELAY));
-        let mut fctl = Vec::with_capacity(26);
-        for v in [sequence, rect.w, rect.h, rect.x, rect.y] {
-            fctl.extend_from_slice(&v.to_be_bytes());
+    let actl = |frames: u32| {
+        let mut a = frames.to_be_bytes().to_vec();
+        a.extend_from_slice(&plays.to_be_bytes());
+        let mut c = Vec::new();
+        chunk(&mut c, b"acTL", &a);
+        c
+    };
+    head.extend_from_slice(&actl(0));
+    out.write_all(&head).map_err(io)?;
+
+    let frame = |i: usize| -> Result<Cow<'f, Pixmap>> {
+        let f = render(i)?;
+        if (f.width(), f.height()) != size {
+            return Err(Error::internal(format!(
+                "frame {i} is {}×{} but the animation is {w}×{h}",
+                f.width(),
+                f.height()
+            )));
         }
-        fctl.extend_from_slice(&num.to_be_bytes());
-        fctl.extend_from_slice(&den.to_be_bytes());
-        fctl.extend_from_slice(&[0, 0]); // dispose NONE, blend SOURCE
-        chunk(&mut out, b"fcTL", &fctl);
-        sequence += 1;
-        if k == 0 {
-            chunk(&mut out, b"IDAT", &data);
-        } else {
-            let mut fdat = Vec::with_capacity(data.len() + 4);
-            fdat.extend_from_slice(&sequence.to_be_bytes());
-            fdat.extend_from_slice(&data);
-            chunk(&mut out, b"fdAT", &fdat);
-            sequence += 1;
+        Ok(f)
+    };
+    // Identical consecutive frames merge into one longer delay, so a piece is final only when
+    // a different frame follows it; final pieces are compressed a chunk at a time.
+    let shown: Vec<(usize, usize)> = playback_schedule(&tl, APNG_MIN_DELAY)
+        .iter()
+        .map(|s| (s.frame, s.intervals))
+        .collect();
+    let mut writer = PieceWriter {
+        last: None,
+        ready: Vec::new(),
+        sequence: 0,
+        pieces: 0,
+        interval,
+        size: (w as usize, h as usize),
+    };
+    let mut open: Option<(Cow<'f, Pixmap>, usize)> = None;
+    let per_chunk = chunk_len(4 * w as usize * h as usize);
+    in_order(
+        &shown,
+        per_chunk,
+        |&(i, intervals)| Ok((frame(i)?, intervals)),
+        |(px, intervals)| {
+            match &mut open {
+                Some((p, n)) if p.data() == px.data() => *n += intervals,
+                _ => {
+                    if let Some(done) = open.replace((px, intervals)) {
+                        writer.ready.push(done);
+                        if writer.ready.len() >= per_chunk {
+                            writer.flush(&mut out)?;
+                        }
+                    }
+                }
+            }
+            Ok(())
+        },
+    )?;
+    writer.ready.extend(open);
+    writer.flush(&mut out)?;
+    let mut end = Vec::new();
+    chunk(&mut end, b"IEND", &[]);
+    out.write_all(&end).map_err(io)?;
+    // The frame count, now known, in place of the placeholder.
+    let after = out.stream_position().map_err(io)?;
+    out.seek(SeekFrom::Start(start + actl_at)).map_err(io)?;
+    out.write_all(&actl(writer.pieces)).map_err(io)?;
+    out.seek(SeekFrom::Start(after)).map_err(io)?;
+    out.flush().map_err(io)
+}
+
+/// Compresses final pieces a chunk at a time, each after the first storing only the rectangle
+/// that changed since the piece before, and writes their `fcTL` and `IDAT`/`fdAT` chunks.
+struct PieceWriter<'f> {
+    /// The last piece written (what the next one is compared with).
+    last: Option<Cow<'f, Pixmap>>,
+    /// Final pieces not written yet, with the frame intervals each is shown.
+    ready: Vec<(Cow<'f, Pixmap>, usize)>,
+    /// The next chunk sequence number.
+    sequence: u32,
+    /// Pieces written so far.
+    pieces: u32,
+    interval: f64,
+    size: (usize, usize),
+}
+
+impl PieceWriter<'_> {
+    fn flush<W: Write>(&mut self, out: &mut W) -> Result<()> {
+        let (wu, hu) = self.size;
+        let ready = &self.ready;
+        let last = self.last.as_deref();
+        let first = self.pieces == 0;
+        let encoded: Vec<Result<(Rect, Vec<u8>)>> = ready
+            .par_iter()
+            .enumerate()
+            .map(|(k, (px, _))| {
+                let prev = if k == 0 { last } else { Some(&*ready[k - 1].0) };
+                let (x0, y0, x1, y1) = changed_rect(prev.map(|p| p.pixels()), px.pixels(), wu, hu);
+                let rgba = straight_rgba(px);
+                let mut crop = Vec::with_capacity(4 * (x1 - x0) * (y1 - y0));
+                for y in y0..y1 {
+                    crop.extend_from_slice(&rgba[4 * (y * wu + x0)..4 * (y * wu + x1)]);
+                }
+                let rect = Rect {
+                    x: x0 as u32,
+                    y: y0 as u32,
+                    w: (x1 - x0) as u32,
+                    h: (y1 - y0) as u32,
+                };
+                Ok((rect, compressed_image_data(&crop, rect.w, rect.h)?))
+            })
+            .collect();
+        let mut bytes = Vec::with_capacity(encoded.iter().flatten().map(|e| e.1.len() + 64).sum());
+        for (k, (e, &(_, intervals))) in encoded.into_iter().zip(ready).enumerate() {
+            let (rect, data) = e?;
+            // Only the target's last interval (once / loop) can be shorter than the minimum.
+            let (num, den) =
+                rational_seconds((intervals as f64 * self.interval).max(APNG_MIN_DELAY));
+            let mut fctl = Vec::with_capacity(26);
+            for v in [self.sequence, rect.w, rect.h, rect.x, rect.y] {
+                fctl.extend_from_slice(&v.to_be_bytes());
+            }
+            fctl.extend_from_slice(&num.to_be_bytes());
+            fctl.extend_from_slice(&den.to_be_bytes());
+            fctl.extend_from_slice(&[0, 0]); // dispose NONE, blend SOURCE
+            chunk(&mut bytes, b"fcTL", &fctl);
+            self.sequence += 1;
+            if first && k == 0 {
+                chunk(&mut bytes, b"IDAT", &data);
+            } else {
+                let mut fdat = Vec::with_capacity(data.len() + 4);
+                fdat.extend_from_slice(&self.sequence.to_be_bytes());
+                fdat.extend_from_slice(&data);
+                chunk(&mut bytes, b"fdAT", &fdat);
+                self.sequence += 1;
+            }
         }
+        out.write_all(&bytes)
+            .map_err(|e| Error::internal(format!("APNG writing failed: {e}")))?;
+        self.pieces += self.ready.len() as u32;
+        if let Some((p, _)) = self.ready.pop() {
+            self.last = Some(p);
+        }
+        self.ready.clear();
+        Ok(())
     }
-    chunk(&mut out, b"IEND", &[]);
-    Ok(out)
 }
 
 /// A frame's region on the canvas, in pixels.
@@ -228,7 +339,6 @@ fn rational_seconds(seconds: f64) -> (u16, u16) {
 mod tests {
     use super::*;
     use crate::export::Playback;
-    use std::io::Cursor;
     use tiny_skia::{Color, Paint, Rect, Transform};
 
     /// `n` frames of a half-transparent bar sliding over a transparent background.

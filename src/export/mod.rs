@@ -7,10 +7,12 @@ pub mod apng;
 pub mod gif;
 pub mod html;
 pub mod morph;
+mod stream;
+pub(crate) use stream::chunk_len;
 pub mod timeline;
 
 pub use apng::encode_apng;
 pub use gif::{encode_gif, gif_fidelity, Fidelity};
 pub use html::{preview_html, PreviewMesh};
-pub use morph::{Morph, Motion};
+pub use morph::{Export, Morph, Motion};
 pub use timeline::{Easing, Playback, Timeline};

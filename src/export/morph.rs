@@ -8,15 +8,21 @@
 use crate::artwork::{ArtworkPair, Scene};
 use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
-use crate::export::{encode_apng, encode_gif, preview_html, PreviewMesh, Timeline};
+use crate::export::apng::write_apng;
+use crate::export::gif::write_gif;
+use crate::export::stream::{chunk_len, in_order};
+use crate::export::{preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::render::{
-    animated_svg_layers, frame_pixmap_layers, frame_svg_layers, FrameOptions, Layer,
+    frame_pixmap_layers, frame_svg_layers, frame_tree, write_animated_svg, FrameOptions, Layer,
+    Mode, Node,
 };
 use crate::rigid::Interpolator;
 use crate::skeleton::SkeletonControl;
 use rayon::prelude::*;
+use std::borrow::Cow;
+use std::io::{Cursor, Seek, Write};
 use std::sync::Arc;
 use tiny_skia::Pixmap;
 
@@ -57,6 +63,21 @@ impl Motion {
             Motion::Skeleton(c) => c.frames(ts),
         }
     }
+}
+
+/// The exports of a [`Morph`] that report frames to its [`Morph::on_frame`] hook (see
+/// [`Morph::reports`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Export {
+    /// [`Morph::gif`]: every frame shown, twice but for the first few (its colours, then its
+    /// indices; a yoyo shows most frames twice, so three times).
+    Gif,
+    /// [`Morph::apng`]: every frame shown (most twice for a yoyo).
+    Apng,
+    /// [`Morph::svg_frames`] and [`Morph::pixmap_frames`]: every frame once.
+    Frames,
+    /// [`Morph::animated_svg`] and [`Morph::html`]: every keyframe once.
+    AnimatedSvg,
 }
 
 /// The compatible meshes, their motion and the bound artwork, with the frame settings.
@@ -130,14 +151,27 @@ impl Morph {
         })
     }
 
-    /// Calls `hook` once for every frame that [`Morph::svg_frames`], [`Morph::pixmap_frames`]
-    /// (and so [`Morph::gif`] and [`Morph::apng`]) render and every keyframe that
-    /// [`Morph::animated_svg`] (and so [`Morph::html`]) builds, as soon as it is done — from
-    /// the worker threads, in no particular order. For progress reports on long exports: a
-    /// 600-frame GIF at 1024² takes half a minute. Encoding after the last frame is not
-    /// counted. Replaces an earlier hook.
+    /// Calls `hook` once for every frame that [`Morph::svg_frames`], [`Morph::pixmap_frames`],
+    /// [`Morph::gif`] and [`Morph::apng`] (and their streaming forms) render and every keyframe
+    /// that [`Morph::animated_svg`] (and so [`Morph::html`]) builds, as soon as it is done —
+    /// from the worker threads, in no particular order. The streaming encoders render some
+    /// frames more than once; [`Morph::reports`] says how many calls an export makes in all.
+    /// For progress reports on long exports: a 600-frame GIF at 1024² takes half a minute.
+    /// Replaces an earlier hook.
     pub fn on_frame(&mut self, hook: impl Fn() + Send + Sync + 'static) {
         self.on_frame = Some(Arc::new(hook));
+    }
+
+    /// How many times `export` of `timeline` calls the [`Morph::on_frame`] hook at these frame
+    /// options: the total of a progress bar.
+    pub fn reports(&self, export: Export, timeline: &Timeline) -> u64 {
+        use crate::export::gif::{gif_renders, playback_schedule, APNG_MIN_DELAY};
+        let tl = timeline.sanitized();
+        (match export {
+            Export::Gif => gif_renders(&tl, self.frame.size),
+            Export::Apng => playback_schedule(&tl, APNG_MIN_DELAY).len(),
+            Export::Frames | Export::AnimatedSvg => tl.frames,
+        }) as u64
     }
 
     /// Reports one finished frame to the [`Morph::on_frame`] hook, if any.
@@ -295,6 +329,30 @@ impl Morph {
         self.motion.frames(&timeline.sanitized().morph_times())
     }
 
+    /// Every frame's mesh as the JSON of [`crate::json::frames_json`] (byte for byte), written
+    /// to `out` as the meshes are solved, a chunk of frames at a time.
+    pub fn write_frames_json(&self, timeline: &Timeline, mut out: impl Write) -> Result<()> {
+        let ts = timeline.sanitized().morph_times();
+        let io = |e: std::io::Error| crate::Error::internal(format!("writing JSON failed: {e}"));
+        out.write_all(b"{\"frames\":[").map_err(io)?;
+        for (c, chunk) in ts.chunks(chunk_len(0)).enumerate() {
+            let meshes = self.motion.frames(chunk);
+            let docs: Vec<String> = meshes
+                .par_iter()
+                .zip(chunk)
+                .map(|(v, &t)| crate::json::frame_json(&self.meshes, t, v))
+                .collect();
+            for (k, doc) in docs.iter().enumerate() {
+                if c > 0 || k > 0 {
+                    out.write_all(b",").map_err(io)?;
+                }
+                out.write_all(doc.as_bytes()).map_err(io)?;
+            }
+        }
+        out.write_all(b"]}").map_err(io)?;
+        out.flush().map_err(io)
+    }
+
     /// The source and target artwork placed in the mesh at `t`: the exact input drawings at
     /// t = 0 and t = 1.
     pub fn scenes_at(&self, t: f64) -> Result<(Scene, Scene)> {
@@ -315,49 +373,108 @@ impl Morph {
 
     /// Every frame of `timeline` as a standalone SVG, in frame order.
     pub fn svg_frames(&self, timeline: &Timeline) -> Result<Vec<String>> {
-        self.each_frame(timeline, |t| self.svg_at(t))
+        let mut out = Vec::new();
+        self.for_each_svg_frame(timeline, |_, svg| {
+            out.push(svg);
+            Ok(())
+        })?;
+        Ok(out)
     }
 
     /// Every frame of `timeline` rendered, in frame order, in parallel.
     pub fn pixmap_frames(&self, timeline: &Timeline) -> Result<Vec<Pixmap>> {
-        self.each_frame(timeline, |t| self.pixmap_at(t))
+        let mut out = Vec::new();
+        self.for_each_pixmap_frame(timeline, |_, px| {
+            out.push(px);
+            Ok(())
+        })?;
+        Ok(out)
     }
 
+    /// Hands frame `i` of `timeline` as a standalone SVG to `sink(i, svg)`, in frame order:
+    /// frames are made in parallel a chunk at a time, so memory holds one chunk however long
+    /// the timeline. Stops at the first error (of a frame or of `sink`).
+    pub fn for_each_svg_frame(
+        &self,
+        timeline: &Timeline,
+        sink: impl FnMut(usize, String) -> Result<()>,
+    ) -> Result<()> {
+        self.each_frame(timeline, 0, |t| self.svg_at(t), sink)
+    }
+
+    /// Hands frame `i` of `timeline` rendered to `sink(i, pixmap)`, in frame order, like
+    /// [`Morph::for_each_svg_frame`].
+    pub fn for_each_pixmap_frame(
+        &self,
+        timeline: &Timeline,
+        sink: impl FnMut(usize, Pixmap) -> Result<()>,
+    ) -> Result<()> {
+        let bytes = 4 * self.frame.pixels() as usize;
+        self.each_frame(timeline, bytes, |t| self.pixmap_at(t), sink)
+    }
+
+    /// `f(t)` of every frame of `timeline` to `sink`, in order, in chunks of frames of
+    /// `item_bytes` each (see [`chunk_len`]).
     fn each_frame<T: Send>(
         &self,
         timeline: &Timeline,
+        item_bytes: usize,
         f: impl Fn(f64) -> Result<T> + Sync + Send,
-    ) -> Result<Vec<T>> {
-        timeline
-            .sanitized()
-            .morph_times()
-            .into_par_iter()
-            .map(|t| {
-                let frame = f(t);
+        mut sink: impl FnMut(usize, T) -> Result<()>,
+    ) -> Result<()> {
+        let ts = timeline.sanitized().morph_times();
+        let frames: Vec<usize> = (0..ts.len()).collect();
+        in_order(
+            &frames,
+            chunk_len(item_bytes),
+            |&i| {
+                let frame = f(ts[i]);
                 self.frame_done();
-                frame
-            })
-            .collect()
+                Ok((i, frame?))
+            },
+            |(i, frame)| sink(i, frame),
+        )
+    }
+
+    /// The frame at `t` rendered, reported to the hook: what the GIF and APNG writers ask for.
+    fn render_frame(&self, t: f64) -> Result<Cow<'static, Pixmap>> {
+        let frame = self.pixmap_at(t);
+        self.frame_done();
+        Ok(Cow::Owned(frame?))
     }
 
     /// The whole morph as one animated SVG (SMIL; see [`crate::render::animated`]).
     pub fn animated_svg(&self, timeline: &Timeline) -> Result<String> {
+        let mut out = Vec::new();
+        self.write_animated_svg(timeline, &mut out)?;
+        String::from_utf8(out).map_err(|_| crate::Error::internal("the SVG is not UTF-8"))
+    }
+
+    /// [`Morph::animated_svg`] written to `out` as it is serialized. Keyframes are made a
+    /// chunk at a time; what stays in memory until the end is every keyframe's attribute
+    /// values, packed (see [`crate::render::animated`]): about 16 bytes per vertex of the
+    /// warped artwork per frame.
+    pub fn write_animated_svg(&self, timeline: &Timeline, out: impl Write) -> Result<()> {
         let tl = timeline.sanitized();
-        let frames = self.vertex_frames(&tl);
-        let keyframes = frames
-            .par_iter()
-            .zip(tl.morph_times())
-            .map(|(v, t)| {
-                let layers = self.layers_at(v, t, true);
-                self.frame_done();
-                layers
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let refs: Vec<Vec<Layer>> = keyframes.iter().map(|k| layers(k)).collect();
+        let ts = tl.morph_times();
+        let trees = |frames: &[usize]| -> Result<Vec<Node>> {
+            let times: Vec<f64> = frames.iter().map(|&i| ts[i]).collect();
+            let meshes = self.motion.frames(&times);
+            meshes
+                .par_iter()
+                .zip(times)
+                .map(|(v, t)| {
+                    let owned = self.layers_at(v, t, true);
+                    self.frame_done();
+                    Ok(frame_tree(&layers(&owned?), t, &self.frame, Mode::Keyframe))
+                })
+                .collect()
+        };
         // The static values (what a viewer without SMIL shows) are the source drawing exactly.
-        let base = self.exact_source_layers(&frames[0])?;
-        let base = layers(&base);
-        animated_svg_layers(&refs, &tl, &self.frame, Some(&base))
+        let first = self.motion.frames(&ts[..1]);
+        let base = self.exact_source_layers(&first[0])?;
+        let base = frame_tree(&layers(&base), 0.0, &self.frame, Mode::Keyframe);
+        write_animated_svg(&tl, &self.frame, trees, Some(base), out)
     }
 
     /// The layers of the first keyframe (`v` the mesh at t = 0) with the source drawing's own
@@ -415,14 +532,34 @@ impl Morph {
     /// The morph as an animated GIF (frames rendered in parallel; composited over the
     /// background, white when there is none, since GIF has no partial transparency).
     pub fn gif(&self, timeline: &Timeline) -> Result<Vec<u8>> {
+        let mut out = Vec::new();
+        self.write_gif(timeline, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Morph::gif`] written to `out` as frames are encoded ([`crate::export::gif::write_gif`]:
+    /// a chunk of frames in memory at a time, each frame rendered twice).
+    pub fn write_gif(&self, timeline: &Timeline, out: impl Write) -> Result<()> {
         let tl = timeline.sanitized();
-        encode_gif(&self.pixmap_frames(&tl)?, &tl, self.frame.background)
+        let ts = tl.morph_times();
+        let render = |i: usize| self.render_frame(ts[i]);
+        write_gif(self.frame.size, render, &tl, self.frame.background, out)
     }
 
     /// The morph as an animated PNG (APNG, full alpha; frames rendered in parallel).
     pub fn apng(&self, timeline: &Timeline) -> Result<Vec<u8>> {
+        let mut out = Cursor::new(Vec::new());
+        self.write_apng(timeline, &mut out)?;
+        Ok(out.into_inner())
+    }
+
+    /// [`Morph::apng`] written to `out` as frames are compressed
+    /// ([`crate::export::apng::write_apng`]: a chunk of frames in memory at a time).
+    pub fn write_apng(&self, timeline: &Timeline, out: impl Write + Seek) -> Result<()> {
         let tl = timeline.sanitized();
-        encode_apng(&self.pixmap_frames(&tl)?, &tl)
+        let ts = tl.morph_times();
+        let render = |i: usize| self.render_frame(ts[i]);
+        write_apng(self.frame.size, render, &tl, out)
     }
 
     /// A standalone HTML page playing the animated SVG, with play/pause, a time slider and a
@@ -519,7 +656,14 @@ mod tests {
         m.gif(&tl).unwrap();
         m.svg_frames(&tl).unwrap();
         m.animated_svg(&tl).unwrap();
-        assert_eq!(done.load(std::sync::atomic::Ordering::Relaxed), 9);
+        let reports = [Export::Gif, Export::Frames, Export::AnimatedSvg].map(|e| m.reports(e, &tl));
+        assert_eq!(
+            reports,
+            [3, 3, 3],
+            "a short GIF keeps its frames between its passes"
+        );
+        let n = done.load(std::sync::atomic::Ordering::Relaxed) as u64;
+        assert_eq!(n, reports.iter().sum::<u64>());
         assert_eq!(anim, m.animated_svg(&tl).unwrap(), "deterministic");
     }
 }

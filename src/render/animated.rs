@@ -72,25 +72,184 @@ pub fn animated_svg_layers(
         )));
     }
     let ts = timeline.morph_times();
-    let trees: Vec<Node> = keyframes
-        .par_iter()
-        .zip(&ts)
-        .map(|(layers, &at)| frame_tree(layers, at, opts, Mode::Keyframe))
-        .collect();
+    let trees = |frames: &[usize]| -> Result<Vec<Node>> {
+        Ok(frames
+            .par_iter()
+            .map(|&i| frame_tree(&keyframes[i], ts[i], opts, Mode::Keyframe))
+            .collect())
+    };
+    let base = base.map(|layers| frame_tree(layers, 0.0, opts, Mode::Keyframe));
+    let mut out = Vec::new();
+    write_animated_svg(&timeline, opts, trees, base, &mut out)?;
+    String::from_utf8(out).map_err(|_| Error::internal("the SVG is not UTF-8"))
+}
+
+/// The animated SVG of keyframe trees made on demand, written to `out`: `trees(frames)` are
+/// the trees ([`frame_tree`] in `Mode::Keyframe`) of those frames of `timeline`, in order,
+/// asked for a chunk at a time, so that no frame's scenes outlive their chunk. What is kept of
+/// every keyframe until the end is its attribute values packed (path coordinates as plain
+/// numbers: about 16 bytes a vertex); the merge needs every keyframe of an element at once
+/// (curves are fitted through all of them). `base` as in [`animated_svg_layers`].
+pub(crate) fn write_animated_svg<W: std::io::Write>(
+    timeline: &Timeline,
+    opts: &FrameOptions,
+    trees: impl Fn(&[usize]) -> Result<Vec<Node>>,
+    base: Option<Node>,
+    out: W,
+) -> Result<()> {
+    let timeline = timeline.sanitized();
+    let frames: Vec<usize> = (0..timeline.frames).collect();
+    let mut first: Option<Node> = None;
+    let mut packed: Vec<Vec<Slot>> = Vec::with_capacity(frames.len());
+    for chunk in frames.chunks(crate::export::chunk_len(0)) {
+        let made = trees(chunk)?;
+        if made.len() != chunk.len() {
+            return Err(Error::internal(format!(
+                "{} keyframe trees for {} frames",
+                made.len(),
+                chunk.len()
+            )));
+        }
+        for tree in made {
+            let first = first.get_or_insert_with(|| tree.clone());
+            let mut slots = Vec::new();
+            pack(&tree, first, &mut slots)?;
+            slots.shrink_to_fit();
+            packed.push(slots);
+        }
+    }
+    let Some(first) = first else {
+        return Err(Error::internal("no keyframes"));
+    };
     let mut order = timeline.sequence();
     if timeline.playback == Playback::Yoyo {
         order.push(0);
     }
-    let nodes: Vec<&Node> = order.iter().map(|&i| &trees[i]).collect();
     let ctx = Context {
         tol: opts.flatten_tolerance(),
         timing: timing(&timeline),
         key_decimals: (order.len() as f64).log10().ceil() as usize + 2,
+        order,
     };
-    let base = base.map(|layers| frame_tree(layers, 0.0, opts, Mode::Keyframe));
     // A base of another structure (it should not happen) is ignored, not an error.
-    let base = base.filter(|b| same_shape(b, nodes[0]));
-    merge(&nodes, base.as_ref(), &ctx)?.to_svg_string()
+    let base = base.filter(|b| same_shape(b, &first));
+    merge(&first, 0, &packed, base.as_ref(), &ctx)?.write_svg(out)
+}
+
+/// One attribute value of one keyframe as kept until the merge: path data as plain numbers
+/// (a `kurbo::PathEl` takes 56 bytes whatever its kind; a line's end point here takes 16),
+/// everything else as it is.
+enum Slot {
+    /// [`Value::Path`], packed.
+    Path {
+        /// 0 move, 1 line, 2 quadratic, 3 cubic, 4 close.
+        verbs: Box<[u8]>,
+        /// The points' coordinates, x then y, in order.
+        coords: Box<[f64]>,
+        decimals: usize,
+        fit: Option<f64>,
+    },
+    /// Any other value.
+    Other(Value),
+}
+
+impl Slot {
+    fn new(v: &Value) -> Slot {
+        match v {
+            Value::Path {
+                path,
+                decimals,
+                fit,
+            } => {
+                let mut verbs = Vec::with_capacity(path.elements().len());
+                let mut coords = Vec::new();
+                for el in path.elements() {
+                    let (verb, pts): (u8, &[kurbo::Point]) = match el {
+                        PathEl::MoveTo(a) => (0, std::slice::from_ref(a)),
+                        PathEl::LineTo(a) => (1, std::slice::from_ref(a)),
+                        PathEl::QuadTo(a, b) => (2, &[*a, *b]),
+                        PathEl::CurveTo(a, b, c) => (3, &[*a, *b, *c]),
+                        PathEl::ClosePath => (4, &[]),
+                    };
+                    verbs.push(verb);
+                    for p in pts {
+                        coords.extend([p.x, p.y]);
+                    }
+                }
+                Slot::Path {
+                    verbs: verbs.into(),
+                    coords: coords.into(),
+                    decimals: *decimals,
+                    fit: *fit,
+                }
+            }
+            other => Slot::Other(other.clone()),
+        }
+    }
+
+    /// The value again, exactly.
+    fn value(&self) -> Value {
+        match self {
+            Slot::Path {
+                verbs,
+                coords,
+                decimals,
+                fit,
+            } => {
+                let mut path = BezPath::new();
+                let mut c = coords
+                    .chunks_exact(2)
+                    .map(|p| kurbo::Point::new(p[0], p[1]));
+                let mut next = || c.next().unwrap_or_default();
+                for v in verbs.iter() {
+                    match v {
+                        0 => path.move_to(next()),
+                        1 => path.line_to(next()),
+                        2 => {
+                            let a = next();
+                            path.quad_to(a, next());
+                        }
+                        3 => {
+                            let (a, b) = (next(), next());
+                            path.curve_to(a, b, next());
+                        }
+                        _ => path.close_path(),
+                    }
+                }
+                Value::Path {
+                    path,
+                    decimals: *decimals,
+                    fit: *fit,
+                }
+            }
+            Slot::Other(v) => v.clone(),
+        }
+    }
+}
+
+/// Appends `tree`'s attribute values in document order (each element's, then its children's)
+/// to `out`, checking that it has `first`'s structure.
+fn pack(tree: &Node, first: &Node, out: &mut Vec<Slot>) -> Result<()> {
+    let same = tree.name == first.name
+        && tree.children.len() == first.children.len()
+        && tree.attrs.len() == first.attrs.len()
+        && tree.attrs.iter().zip(&first.attrs).all(|(a, b)| a.0 == b.0);
+    if !same {
+        return Err(Error::internal(format!(
+            "keyframes differ in structure at <{}>",
+            first.name
+        )));
+    }
+    out.extend(tree.attrs.iter().map(|(_, v)| Slot::new(v)));
+    for (c, f) in tree.children.iter().zip(&first.children) {
+        pack(c, f, out)?;
+    }
+    Ok(())
+}
+
+/// Attribute values in a subtree (the slots [`pack`] makes of it).
+fn slot_count(node: &Node) -> usize {
+    node.attrs.len() + node.children.iter().map(slot_count).sum::<usize>()
 }
 
 /// Whether two trees have the same elements with the same attribute names, in order.
@@ -113,6 +272,8 @@ struct Context {
     timing: Vec<(&'static str, Value)>,
     /// Decimals of `keyTimes`.
     key_decimals: usize,
+    /// The keyframes in playback order (indices of frames).
+    order: Vec<usize>,
 }
 
 fn timing(tl: &Timeline) -> Vec<(&'static str, Value)> {
@@ -128,27 +289,26 @@ fn timing(tl: &Timeline) -> Vec<(&'static str, Value)> {
     a
 }
 
-/// One element across keyframes (`nodes[k]` = the element in keyframe k of the playback
-/// order) merged into one element with animations.
-fn merge(nodes: &[&Node], base: Option<&Node>, ctx: &Context) -> Result<Node> {
-    let first = nodes[0];
-    for n in nodes {
-        let same = n.name == first.name
-            && n.children.len() == first.children.len()
-            && n.attrs.len() == first.attrs.len()
-            && n.attrs.iter().zip(&first.attrs).all(|(a, b)| a.0 == b.0);
-        if !same {
-            return Err(Error::internal(format!(
-                "keyframes differ in structure at <{}>",
-                first.name
-            )));
-        }
-    }
-    let mut out = Node::new(&first.name, Vec::new());
+/// One element (`node`, as in the first keyframe, its values from slot `at` of every
+/// keyframe in `packed`) merged across the keyframes of the playback order into one element
+/// with animations.
+fn merge(
+    node: &Node,
+    at: usize,
+    packed: &[Vec<Slot>],
+    base: Option<&Node>,
+    ctx: &Context,
+) -> Result<Node> {
+    let mut out = Node::new(&node.name, Vec::new());
     let mut animations = Vec::new();
-    for (ai, (key, v0)) in first.attrs.iter().enumerate() {
-        let values: Vec<&Value> = nodes.iter().map(|n| &n.attrs[ai].1).collect();
-        let (stat, anims) = attribute(key, v0, &values, ctx);
+    for (ai, (key, _)) in node.attrs.iter().enumerate() {
+        // The values in playback order, unpacked for this attribute alone.
+        let values: Vec<Value> = ctx
+            .order
+            .iter()
+            .map(|&k| packed[k][at + ai].value())
+            .collect();
+        let (stat, anims) = attribute(key, values, ctx);
         // The static value from the base where it has one of the same kind.
         let stat = match (base.map(|b| &b.attrs[ai].1), &stat) {
             (Some(Value::Path { path, decimals, .. }), Value::Text(_)) => {
@@ -160,11 +320,22 @@ fn merge(nodes: &[&Node], base: Option<&Node>, ctx: &Context) -> Result<Node> {
         out.attrs.push((key, stat));
         animations.extend(anims);
     }
-    let children: Vec<Node> = (0..first.children.len())
+    let mut starts = Vec::with_capacity(node.children.len());
+    let mut next = at + node.attrs.len();
+    for c in &node.children {
+        starts.push(next);
+        next += slot_count(c);
+    }
+    let children: Vec<Node> = (0..node.children.len())
         .into_par_iter()
         .map(|ci| {
-            let kids: Vec<&Node> = nodes.iter().map(|n| &n.children[ci]).collect();
-            merge(&kids, base.map(|b| &b.children[ci]), ctx)
+            merge(
+                &node.children[ci],
+                starts[ci],
+                packed,
+                base.map(|b| &b.children[ci]),
+                ctx,
+            )
         })
         .collect::<Result<_>>()?;
     out.children = children;
@@ -173,26 +344,24 @@ fn merge(nodes: &[&Node], base: Option<&Node>, ctx: &Context) -> Result<Node> {
 }
 
 /// The static value of one attribute and the animations it needs.
-fn attribute(
-    key: &'static str,
-    v0: &Value,
-    values: &[&Value],
-    ctx: &Context,
-) -> (Value, Vec<Node>) {
-    match v0 {
+///
+/// `values` are the attribute's values in the keyframes of the playback order (the first is
+/// the static one); they are consumed, so that an outline's keyframes are held once while their
+/// curves are fitted (the paths of every keyframe of one element are the largest thing the
+/// merge holds).
+fn attribute(key: &'static str, values: Vec<Value>, ctx: &Context) -> (Value, Vec<Node>) {
+    let v0 = values[0].clone();
+    match &v0 {
         Value::Path { decimals, fit, .. } => {
             let paths: Vec<BezPath> = values
-                .iter()
+                .into_iter()
                 .map(|v| match v {
-                    Value::Path { path, .. } => path.clone(),
+                    Value::Path { path, .. } => path,
                     _ => BezPath::new(),
                 })
                 .collect();
             let tol = fit.unwrap_or(ctx.tol);
-            let paths = match fit {
-                Some(t) => fit_paths(&paths, *t),
-                None => paths,
-            };
+            let paths = fitted(paths, *fit);
             let stat = Value::Text(path_data(&paths[0], *decimals));
             let nums: Vec<Vec<f64>> = paths.iter().map(coordinates).collect();
             // Unchanged (to the written precision) in every keyframe: no animation.
@@ -229,16 +398,25 @@ fn attribute(
                 return (values[0].clone(), Vec::new());
             }
             // Numbers and colours interpolate; text, or numbers whose count changes, switch.
-            let nums: Option<Vec<Vec<f64>>> = values.iter().map(|v| numbers(v)).collect();
+            let nums: Option<Vec<Vec<f64>>> = values.iter().map(numbers).collect();
             let anim = match nums {
                 Some(nums) if nums.iter().all(|n| n.len() == nums[0].len()) => {
-                    let kept = keep(&nums, tolerance(v0, ctx));
+                    let kept = keep(&nums, tolerance(&v0, ctx));
                     animate(key, &kept, |k| texts[k].clone(), ctx, false)
                 }
                 _ => discrete(key, &texts, ctx),
             };
             (values[0].clone(), vec![anim])
         }
+    }
+}
+
+/// `paths` with curves fitted within `fit` in every keyframe (unchanged without a tolerance);
+/// the polylines are dropped as soon as the fit is made.
+fn fitted(paths: Vec<BezPath>, fit: Option<f64>) -> Vec<BezPath> {
+    match fit {
+        Some(t) => fit_paths(&paths, t),
+        None => paths,
     }
 }
 

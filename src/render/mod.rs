@@ -16,12 +16,14 @@ pub mod svg_frame;
 mod tree;
 pub mod view;
 
+pub(crate) use animated::write_animated_svg;
 pub use animated::{animated_svg, animated_svg_layers};
 pub use raster::{
     encode_png, frame_pixmap, frame_pixmap_layers, frame_png, render_scene, straight_rgba, svg_png,
 };
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
-pub(crate) use tree::fixed;
+pub(crate) use svg_frame::{frame_tree, Mode};
+pub(crate) use tree::{fixed, Node};
 pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};
@@ -36,6 +38,11 @@ pub struct FrameOptions {
     pub size: (u32, u32),
     /// Colour under the artwork. Default: none (transparent).
     pub background: Option<Rgba>,
+    /// Most pixels a raster frame of these options may have
+    /// ([`crate::input::Limits::pixels`]): every pixmap is checked against it before it is
+    /// allocated, so that a drawing with `width="100000"` is a prompt error, not a 40 GB
+    /// allocation that aborts. Default: the default limit.
+    pub max_pixels: u64,
 }
 
 impl FrameOptions {
@@ -53,7 +60,20 @@ impl FrameOptions {
             view_box: scene.view_box,
             size: (px(scene.size.0), px(scene.size.1)),
             background: None,
+            max_pixels: crate::input::Limits::default().pixels,
         }
+    }
+
+    /// Pixels in one raster frame of this size.
+    pub fn pixels(&self) -> u64 {
+        self.size.0 as u64 * self.size.1 as u64
+    }
+
+    /// Checks that a raster frame of this size is within [`FrameOptions::max_pixels`] (and
+    /// not empty): the input error for `file` (the drawing whose size it is) naming
+    /// `--max-pixels` otherwise. Called before any pixmap is allocated.
+    pub fn check_pixels(&self, file: &str) -> crate::Result<()> {
+        check_raster_size(file, self.size, self.max_pixels)
     }
 
     /// Output pixels per user unit (the finer axis): the scale flattening tolerances refer to.
@@ -66,6 +86,34 @@ impl FrameOptions {
     pub fn flatten_tolerance(&self) -> f64 {
         crate::artwork::flatten_tolerance(self.view_box, (self.size.0 as f64, self.size.1 as f64))
     }
+}
+
+/// Checks that a `size.0 × size.1` raster is neither empty nor over `max_pixels` (see
+/// [`FrameOptions::check_pixels`]).
+pub(crate) fn check_raster_size(
+    file: &str,
+    size: (u32, u32),
+    max_pixels: u64,
+) -> crate::Result<()> {
+    let (w, h) = size;
+    if w == 0 || h == 0 {
+        return Err(crate::Error::input(
+            file,
+            format!("cannot render a {w}×{h} image: the size must be positive"),
+        ));
+    }
+    let limits = crate::input::Limits {
+        pixels: max_pixels,
+        ..crate::input::Limits::default()
+    };
+    if w as u64 * h as u64 > max_pixels {
+        return Err(crate::input::Limit::Pixels.exceeded(
+            file,
+            &format!("a frame of {w} × {h} px"),
+            &limits,
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -22,17 +22,19 @@ pub fn render_scene(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
             ..*opts
         },
     )?;
-    render_svg(&svg, opts)
+    render_svg(&svg, &scene.file, opts)
 }
 
 /// Renders one warped side of an in-between frame exactly as the SVG frame writes it (outlines
 /// fitted with curves), so raster and SVG frames show the same geometry.
 pub(crate) fn render_side(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
-    render_svg(&side_svg(scene, opts)?, opts)
+    render_svg(&side_svg(scene, opts)?, &scene.file, opts)
 }
 
-fn render_svg(svg: &str, opts: &FrameOptions) -> Result<Pixmap> {
-    let mut pixmap = blank(opts)?;
+/// Renders crmorph's own SVG of one side onto a transparent pixmap; `file` is the drawing an
+/// over-sized frame is blamed on.
+fn render_svg(svg: &str, file: &str, opts: &FrameOptions) -> Result<Pixmap> {
+    let mut pixmap = blank(opts, file)?;
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
         .map_err(|e| Error::internal(format!("crmorph wrote an SVG usvg cannot read: {e}")))?;
     resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
@@ -50,7 +52,14 @@ pub fn frame_pixmap(source: &Scene, target: &Scene, t: f64, opts: &FrameOptions)
 /// each [`Layer::Blend`] rendered and dissolved on its own, each [`Layer::Over`] rendered, and
 /// each composited source-over onto the layers below, then over the background. At t = 0
 /// (t = 1) a blend layer is its source (target) side alone.
+///
+/// Errors: a frame size over `opts.max_pixels` (checked before anything is rendered).
 pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Result<Pixmap> {
+    let file = layers.first().map_or("<output>", |l| match l {
+        Layer::Blend(s, _) => s.file.as_str(),
+        Layer::Over(o) => o.file.as_str(),
+    });
+    opts.check_pixels(file)?;
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
     let render = |layer: &Layer| -> Result<Pixmap> {
         match *layer {
@@ -74,12 +83,12 @@ pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Res
     }
     let blended = match stack {
         Some(p) => p,
-        None => blank(opts)?,
+        None => blank(opts, file)?,
     };
     match opts.background {
         None => Ok(blended),
         Some(bg) => {
-            let mut out = blank(opts)?;
+            let mut out = blank(opts, file)?;
             out.fill(tiny_skia::Color::from_rgba8(bg.r, bg.g, bg.b, bg.a));
             over(&mut out, &blended);
             Ok(out)
@@ -87,12 +96,14 @@ pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Res
     }
 }
 
-/// A transparent pixmap of the frame's size.
-fn blank(opts: &FrameOptions) -> Result<Pixmap> {
+/// A transparent pixmap of the frame's size, checked against `opts.max_pixels` first (the
+/// error blames `file`).
+fn blank(opts: &FrameOptions, file: &str) -> Result<Pixmap> {
+    opts.check_pixels(file)?;
     let (w, h) = opts.size;
     Pixmap::new(w, h).ok_or_else(|| {
         Error::input(
-            "<output>",
+            file,
             format!("cannot render a {w}×{h} image: the size must be positive and not huge"),
         )
     })
@@ -163,9 +174,12 @@ pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
 /// Any SVG document (for example [`crate::inspect::inspect_svg`]'s picture) rendered to PNG at
 /// `width` pixels wide (default: its own width), height in proportion.
 ///
+/// Errors: an image of more than `max_pixels` pixels ([`crate::input::Limits::pixels`]; the
+/// error blames `file`, the drawing whose size it has), checked before allocating.
+///
 /// Text is set in the bundled DejaVu Sans subset, whatever family it names, and no system font
 /// is read: crmorph's own pictures (the inspect captions) look the same on every machine.
-pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
+pub fn svg_png(svg: &str, width: Option<u32>, file: &str, max_pixels: u64) -> Result<Vec<u8>> {
     let opts = usvg::Options {
         fontdb: super::font::bundled_fontdb(),
         ..usvg::Options::default()
@@ -176,7 +190,10 @@ pub fn svg_png(svg: &str, width: Option<u32>) -> Result<Vec<u8>> {
     let w = width.map(|w| w as f32).unwrap_or(size.width()).max(1.0);
     let scale = w / size.width().max(1e-6);
     let h = (size.height() * scale).round().max(1.0);
-    let mut pixmap = Pixmap::new(w.round() as u32, h as u32)
+    // Float to integer casts saturate: a huge or infinite side becomes u32::MAX, over any limit.
+    let (pw, ph) = (w.round() as u32, h as u32);
+    super::check_raster_size(file, (pw, ph), max_pixels)?;
+    let mut pixmap = Pixmap::new(pw, ph)
         .ok_or_else(|| Error::internal(format!("cannot render a {w}×{h} image")))?;
     resvg::render(
         &tree,

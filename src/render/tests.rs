@@ -89,6 +89,7 @@ fn opts() -> FrameOptions {
         view_box: (Point::ZERO, Point::new(120.0, 90.0)),
         size: (240, 180),
         background: None,
+        max_pixels: crate::input::Limits::default().pixels,
     }
 }
 

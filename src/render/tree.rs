@@ -120,7 +120,17 @@ impl Node {
         String::from_utf8(w.into_inner()).map_err(|_| Error::internal("the SVG is not UTF-8"))
     }
 
-    fn write(&self, w: &mut Writer<Vec<u8>>) -> std::io::Result<()> {
+    /// The document written to `out` as it is serialized (no text of the whole file in
+    /// memory).
+    pub(crate) fn write_svg<W: std::io::Write>(&self, out: W) -> Result<()> {
+        let mut w = Writer::new(std::io::BufWriter::new(out));
+        self.write(&mut w)
+            .map_err(|e| Error::internal(format!("writing the SVG failed: {e}")))?;
+        std::io::Write::flush(w.get_mut())
+            .map_err(|e| Error::internal(format!("writing the SVG failed: {e}")))
+    }
+
+    fn write<W: std::io::Write>(&self, w: &mut Writer<W>) -> std::io::Result<()> {
         let mut e = BytesStart::new(self.name.as_str());
         for (k, v) in &self.attrs {
             let text = v.text();

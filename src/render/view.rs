@@ -99,7 +99,7 @@ impl FrameOptions {
         FrameOptions {
             view_box: (lo, hi),
             size,
-            background: self.background,
+            ..*self
         }
     }
 }
@@ -113,6 +113,7 @@ mod tests {
             view_box: (Point::ZERO, Point::new(100.0, 100.0)),
             size: (200, 200),
             background: None,
+            max_pixels: u64::MAX,
         }
     }
 

@@ -41,11 +41,14 @@ mod dither;
 mod fidelity;
 mod palette;
 
+use std::borrow::Cow;
 use std::collections::{BTreeSet, HashMap};
+use std::io::Write;
 
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
+use super::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::artwork::Rgba;
 use crate::{Error, Result};
@@ -53,7 +56,9 @@ pub use fidelity::{gif_fidelity, Fidelity};
 use palette::{frame_colours, sample_rgba, FrameColours, Palette};
 
 /// Shortest delay browsers honour: GIF delays of 0 or 1 cs are replaced by 100 ms.
-const GIF_MIN_DELAY: f64 = 0.02;
+pub(crate) const GIF_MIN_DELAY: f64 = 0.02;
+
+pub(crate) use super::apng::APNG_MIN_DELAY;
 
 /// At most this many pixels train the global `NeuQuant` palette (spread over all frames).
 const PALETTE_SAMPLE: usize = 1 << 19;
@@ -190,9 +195,40 @@ pub fn encode_gif(
     timeline: &Timeline,
     background: Option<Rgba>,
 ) -> Result<Vec<u8>> {
-    let (w, h) = check_frames(frames, timeline)?;
+    let size = check_frames(frames, timeline)?;
+    let mut out = Vec::new();
+    write_gif(
+        size,
+        |i| Ok(Cow::Borrowed(&frames[i])),
+        timeline,
+        background,
+        &mut out,
+    )?;
+    Ok(out)
+}
+
+/// [`encode_gif`] of frames rendered on demand, written to `out` as they are encoded: memory
+/// holds a chunk of frames at a time, however many the timeline has.
+///
+/// `render(i)` is frame `i` of `timeline`, `size` pixels. It is called from rayon's threads,
+/// in two passes over the frames that are shown: the colours of every frame (for the global
+/// palette) and then, in playback order, their indices. The first 64 frames (at most 32 MiB)
+/// are kept between the passes; the others are rendered twice (three times for the frames a
+/// yoyo shows twice) — the price of a palette shared by all frames without keeping them all.
+/// The bytes are those of [`encode_gif`] on the same frames.
+///
+/// Errors: those of `render` and of `out`, and (internal) a frame of another size or larger
+/// than GIF's 65 535 px.
+pub fn write_gif<'f, W: Write>(
+    size: (u32, u32),
+    render: impl Fn(usize) -> Result<Cow<'f, Pixmap>> + Sync,
+    timeline: &Timeline,
+    background: Option<Rgba>,
+    out: W,
+) -> Result<()> {
+    let (w, h) = size;
     let (gw, gh) = match (u16::try_from(w), u16::try_from(h)) {
-        (Ok(gw), Ok(gh)) => (gw, gh),
+        (Ok(gw), Ok(gh)) if w > 0 && h > 0 => (gw, gh),
         _ => {
             return Err(Error::internal(format!(
                 "{w}×{h} frames exceed GIF's 65535 px limit"
@@ -202,86 +238,202 @@ pub fn encode_gif(
     let tl = timeline.sanitized();
     let schedule = playback_schedule(&tl, GIF_MIN_DELAY);
     let bg = opaque_background(background);
+    let (wu, hu) = (w as usize, h as usize);
+    let rgb = |i: usize| -> Result<Vec<u8>> {
+        let frame = render(i)?;
+        if (frame.width(), frame.height()) != size {
+            return Err(Error::internal(format!(
+                "frame {i} is {}×{} but the animation is {w}×{h}",
+                frame.width(),
+                frame.height()
+            )));
+        }
+        Ok(composite_rgb(&frame, bg))
+    };
 
-    // Two passes over the frames that are shown (yoyo shows most of them twice), compositing
-    // each one again rather than keeping them all in RGB: colour statistics, then indices.
-    let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
-    let used: Vec<usize> = used.into_iter().collect();
+    // Two passes over the frames that are shown (yoyo shows most of them twice): colour
+    // statistics, then indices. The first few frames are kept between the passes (all of a
+    // short animation); the others are rendered again rather than kept.
+    let used = shown_frames(&schedule);
+    let kept = &used[..kept_frames(used.len(), size)];
     let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
-    let stats: Vec<FrameColours> = used
-        .par_iter()
-        .map(|&i| {
-            let rgb = composite_rgb(&frames[i], bg);
-            FrameColours {
+    let mut stats: Vec<FrameColours> = Vec::with_capacity(used.len());
+    let mut cache: HashMap<usize, Vec<u8>> = HashMap::with_capacity(kept.len());
+    let chunk = chunk_len(4 * wu * hu);
+    in_order(
+        &used,
+        chunk,
+        |&i| {
+            let rgb = rgb(i)?;
+            let colours = FrameColours {
                 distinct: frame_colours(&rgb, 256),
                 sample: sample_rgba(&rgb, per_frame, i as u64),
-            }
-        })
-        .collect();
+            };
+            Ok((i, colours, kept.contains(&i).then_some(rgb)))
+        },
+        |(i, c, rgb)| {
+            stats.push(c);
+            cache.extend(rgb.map(|rgb| (i, rgb)));
+            Ok(())
+        },
+    )?;
     let global = Palette::build(&stats);
     drop(stats);
-    let mapped: Vec<Mapped> = used
-        .par_iter()
-        .map(|&i| Mapped::new(&composite_rgb(&frames[i], bg), w as usize, &global, i))
-        .collect();
-    let slot: HashMap<usize, usize> = used.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-    let (wu, hu) = (w as usize, h as usize);
-    let differs = |a: &Mapped, b: &Mapped, p: usize| a.colour(&global, p) != b.colour(&global, p);
-
-    let mut pieces: Vec<(usize, f64)> = Vec::with_capacity(schedule.len());
-    for (s, delay) in schedule
-        .iter()
-        .zip(delays_cs(&schedule, tl.frame_interval()))
-    {
-        let buf = slot[&s.frame];
-        match pieces.last_mut() {
-            Some((prev, d)) if !(0..wu * hu).any(|p| differs(&mapped[*prev], &mapped[buf], p)) => {
-                *d += delay
-            }
-            _ => pieces.push((buf, delay)),
-        }
-    }
-
-    // Each frame after the first stores only the rectangle whose colours changed; LZW in
-    // parallel.
-    let mut gif_frames: Vec<gif::Frame<'static>> = pieces
-        .par_iter()
-        .enumerate()
-        .map(|(k, &(buf, delay))| {
-            let cur = &mapped[buf];
-            let (x0, y0, x1, y1) = match k {
-                0 => (0, 0, wu, hu),
-                _ => changed_rect_by(wu, hu, |p| differs(&mapped[pieces[k - 1].0], cur, p)),
-            };
-            let mut pixels = Vec::with_capacity((x1 - x0) * (y1 - y0));
-            for y in y0..y1 {
-                pixels.extend_from_slice(&cur.indices[y * wu + x0..y * wu + x1]);
-            }
-            let mut f = gif::Frame {
-                delay: delay.min(u16::MAX as f64) as u16,
-                dispose: gif::DisposalMethod::Keep,
-                left: x0 as u16,
-                top: y0 as u16,
-                width: (x1 - x0) as u16,
-                height: (y1 - y0) as u16,
-                buffer: pixels.into(),
-                palette: cur.local.as_ref().map(|p| p.colours.clone()),
-                ..gif::Frame::default()
-            };
-            f.make_lzw_pre_encoded();
-            f
-        })
-        .collect();
 
     let err = |e: gif::EncodingError| Error::internal(format!("GIF encoding failed: {e}"));
-    let mut enc = gif::Encoder::new(Vec::new(), gw, gh, &global.colours).map_err(err)?;
+    let mut enc = gif::Encoder::new(out, gw, gh, &global.colours).map_err(err)?;
     if tl.repeats() {
         enc.set_repeat(gif::Repeat::Infinite).map_err(err)?;
     }
-    for f in gif_frames.iter_mut() {
-        enc.write_lzw_pre_encoded_frame(f).map_err(err)?;
+    let differs = |a: &Mapped, b: &Mapped, p: usize| a.colour(&global, p) != b.colour(&global, p);
+    let shown: Vec<(usize, f64)> = schedule
+        .iter()
+        .map(|s| s.frame)
+        .zip(delays_cs(&schedule, tl.frame_interval()))
+        .collect();
+    // Identical consecutive frames merge into one longer delay, so a piece is final only when
+    // a different frame follows it; final pieces are encoded a chunk at a time.
+    let mut writer = PieceWriter {
+        last: None,
+        ready: Vec::new(),
+        global: &global,
+        size: (wu, hu),
+    };
+    let mut open: Option<Piece> = None;
+    in_order(
+        &shown,
+        chunk,
+        |&(i, delay)| {
+            let mapped = match cache.get(&i) {
+                Some(rgb) => Mapped::new(rgb, wu, &global, i),
+                None => Mapped::new(&rgb(i)?, wu, &global, i),
+            };
+            Ok((mapped, delay))
+        },
+        |(mapped, delay)| {
+            match &mut open {
+                Some(p) if !(0..wu * hu).any(|q| differs(&p.mapped, &mapped, q)) => {
+                    p.delay += delay;
+                }
+                _ => {
+                    if let Some(done) = open.replace(Piece { mapped, delay }) {
+                        writer.ready.push(done);
+                        if writer.ready.len() >= chunk {
+                            writer.flush(&mut enc)?;
+                        }
+                    }
+                }
+            }
+            Ok(())
+        },
+    )?;
+    writer.ready.extend(open);
+    writer.flush(&mut enc)?;
+    enc.into_inner()
+        .map_err(err)?
+        .flush()
+        .map_err(|e| Error::internal(format!("GIF encoding failed: {e}")))
+}
+
+/// At most this many frames are kept between the GIF encoder's two passes…
+const KEPT_FRAMES: usize = 64;
+
+/// …and at most this many bytes of them (composited RGB).
+const KEPT_BYTES: usize = 32 << 20;
+
+/// The frames a schedule shows, each once, in frame order.
+fn shown_frames(schedule: &[Shown]) -> Vec<usize> {
+    let used: BTreeSet<usize> = schedule.iter().map(|s| s.frame).collect();
+    used.into_iter().collect()
+}
+
+/// How many of the `used` frames shown (the first ones) stay in memory between the two passes
+/// at `size`: all of a default 60-frame animation at sizes up to about 400², so that it is
+/// rendered once, and never more than [`KEPT_BYTES`], so that memory does not grow with the
+/// frame count.
+fn kept_frames(used: usize, size: (u32, u32)) -> usize {
+    let bytes = (size.0 as usize * size.1 as usize * 3).max(1);
+    used.min(KEPT_FRAMES).min(KEPT_BYTES / bytes)
+}
+
+/// How many frames [`write_gif`] renders for `timeline` at `size`: each frame shown in the
+/// first pass, and in the second every frame shown (yoyo: most twice) but those kept.
+pub(crate) fn gif_renders(timeline: &Timeline, size: (u32, u32)) -> usize {
+    let schedule = playback_schedule(timeline, GIF_MIN_DELAY);
+    let used = shown_frames(&schedule);
+    let kept = &used[..kept_frames(used.len(), size)];
+    let again = schedule.iter().filter(|s| !kept.contains(&s.frame)).count();
+    used.len() + again
+}
+
+/// A frame shown for `delay` centiseconds.
+struct Piece {
+    mapped: Mapped,
+    delay: f64,
+}
+
+/// Encodes final pieces a chunk at a time, each after the first storing only the rectangle
+/// whose colours changed since the piece before.
+struct PieceWriter<'a> {
+    /// The last piece written (what the next one is compared with).
+    last: Option<Mapped>,
+    /// Final pieces not written yet, in order.
+    ready: Vec<Piece>,
+    global: &'a Palette,
+    size: (usize, usize),
+}
+
+impl PieceWriter<'_> {
+    /// LZW-encodes the ready pieces in parallel and writes them in order.
+    fn flush<W: Write>(&mut self, enc: &mut gif::Encoder<W>) -> Result<()> {
+        let (wu, hu) = self.size;
+        let global = self.global;
+        let differs = |a: &Mapped, b: &Mapped, p: usize| a.colour(global, p) != b.colour(global, p);
+        let ready = &self.ready;
+        let last = self.last.as_ref();
+        let mut frames: Vec<gif::Frame<'static>> = ready
+            .par_iter()
+            .enumerate()
+            .map(|(k, piece)| {
+                let cur = &piece.mapped;
+                let prev = if k == 0 {
+                    last
+                } else {
+                    Some(&ready[k - 1].mapped)
+                };
+                let (x0, y0, x1, y1) = match prev {
+                    None => (0, 0, wu, hu),
+                    Some(prev) => changed_rect_by(wu, hu, |p| differs(prev, cur, p)),
+                };
+                let mut pixels = Vec::with_capacity((x1 - x0) * (y1 - y0));
+                for y in y0..y1 {
+                    pixels.extend_from_slice(&cur.indices[y * wu + x0..y * wu + x1]);
+                }
+                let mut f = gif::Frame {
+                    delay: piece.delay.min(u16::MAX as f64) as u16,
+                    dispose: gif::DisposalMethod::Keep,
+                    left: x0 as u16,
+                    top: y0 as u16,
+                    width: (x1 - x0) as u16,
+                    height: (y1 - y0) as u16,
+                    buffer: pixels.into(),
+                    palette: cur.local.as_ref().map(|p| p.colours.clone()),
+                    ..gif::Frame::default()
+                };
+                f.make_lzw_pre_encoded();
+                f
+            })
+            .collect();
+        let err = |e: gif::EncodingError| Error::internal(format!("GIF encoding failed: {e}"));
+        for f in frames.iter_mut() {
+            enc.write_lzw_pre_encoded_frame(f).map_err(err)?;
+        }
+        if let Some(p) = self.ready.pop() {
+            self.last = Some(p.mapped);
+        }
+        self.ready.clear();
+        Ok(())
     }
-    enc.into_inner().map_err(err)
 }
 
 /// One frame as palette indices, with its local colour table when it has one.
@@ -636,6 +788,45 @@ mod tests {
 
     fn straight(p: &Pixmap) -> Vec<u8> {
         crate::render::straight_rgba(p)
+    }
+
+    #[test]
+    fn frames_beyond_those_kept_between_the_passes_are_rendered_again_alike() {
+        // More frames shown than are kept between the passes: the later ones are rendered a
+        // second time, and every frame still decodes to itself (two colours: exact palette).
+        let n = KEPT_FRAMES + 40;
+        let frames: Vec<Pixmap> = (0..n)
+            .map(|k| {
+                frame(
+                    40,
+                    4,
+                    (k % 30) as f32,
+                    (k % 30 + 6) as f32,
+                    [0, 90, 200, 255],
+                )
+            })
+            .collect();
+        let tl = timeline(n, 10.0, Playback::Once);
+        assert_eq!(gif_renders(&tl, (40, 4)), n + n - KEPT_FRAMES);
+        let renders = std::sync::atomic::AtomicUsize::new(0);
+        let mut bytes = Vec::new();
+        let render = |i: usize| {
+            renders.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Ok(Cow::Borrowed(&frames[i]))
+        };
+        write_gif((40, 4), render, &tl, None, &mut bytes).unwrap();
+        assert_eq!(renders.into_inner(), gif_renders(&tl, (40, 4)));
+        assert_eq!(bytes, encode_gif(&frames, &tl, None).unwrap());
+        let d = decode(&bytes);
+        assert_eq!(d.canvases.len(), n);
+        for (k, canvas) in d.canvases.iter().enumerate() {
+            let want = composite_rgb(&frames[k], [255; 3]);
+            let rgb: Vec<u8> = canvas
+                .chunks_exact(4)
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            assert_eq!(rgb, want, "frame {k}");
+        }
     }
 
     #[test]
