@@ -35,7 +35,10 @@ pub(crate) fn render_side(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> 
 /// over-sized frame is blamed on.
 fn render_svg(svg: &str, file: &str, opts: &FrameOptions) -> Result<Pixmap> {
     let mut pixmap = blank(opts, file)?;
-    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+    // crmorph's own SVG embeds images as data URIs; it is read as strictly as an input, so a
+    // reference that slipped through could never make it read a file.
+    let read = crate::input::usvg_options(file, None, &crate::input::InputPolicy::default());
+    let tree = usvg::Tree::from_str(svg, &read)
         .map_err(|e| Error::internal(format!("crmorph wrote an SVG usvg cannot read: {e}")))?;
     resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
     Ok(pixmap)
@@ -178,11 +181,12 @@ pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
 /// error blames `file`, the drawing whose size it has), checked before allocating.
 ///
 /// Text is set in the bundled DejaVu Sans subset, whatever family it names, and no system font
-/// is read: crmorph's own pictures (the inspect captions) look the same on every machine.
+/// is read: crmorph's own pictures (the inspect captions) look the same on every machine. Only
+/// data-URI images are read, under the input policy's rules ([`crate::input`]).
 pub fn svg_png(svg: &str, width: Option<u32>, file: &str, max_pixels: u64) -> Result<Vec<u8>> {
     let opts = usvg::Options {
         fontdb: super::font::bundled_fontdb(),
-        ..usvg::Options::default()
+        ..crate::input::usvg_options(file, None, &crate::input::InputPolicy::default())
     };
     let tree = usvg::Tree::from_str(svg, &opts)
         .map_err(|e| Error::internal(format!("cannot read the SVG to render: {e}")))?;
