@@ -62,6 +62,52 @@ pub(crate) fn scan(name: &str, text: &str, limits: &Limits) -> Result<()> {
 /// else sees them, in a number that grows with the radius: 3.4e38 gives millions per arc.
 const MAX_ARC_RADIUS: f64 = crate::tolerance::MAX_COORDINATE;
 
+/// The segments of path data `d`, with each arc's radius checked as it will be drawn: the larger
+/// of its radii and half its chord (SVG scales radii that cannot reach the end point up), so
+/// the current point is followed through relative commands.
+fn path_data_segments(name: &str, d: &str) -> Result<usize> {
+    use svgtypes::PathSegment as P;
+    let (mut n, mut cur, mut start) = (0usize, (0.0f64, 0.0f64), (0.0f64, 0.0f64));
+    for seg in svgtypes::PathParser::from(d) {
+        let Ok(seg) = seg else { break };
+        n += 1;
+        let to = |abs: bool, x: f64, y: f64| if abs { (x, y) } else { (cur.0 + x, cur.1 + y) };
+        let next = match seg {
+            P::MoveTo { abs, x, y } => {
+                start = to(abs, x, y);
+                start
+            }
+            P::LineTo { abs, x, y }
+            | P::CurveTo { abs, x, y, .. }
+            | P::SmoothCurveTo { abs, x, y, .. }
+            | P::Quadratic { abs, x, y, .. }
+            | P::SmoothQuadratic { abs, x, y } => to(abs, x, y),
+            P::HorizontalLineTo { abs, x } => (if abs { x } else { cur.0 + x }, cur.1),
+            P::VerticalLineTo { abs, y } => (cur.0, if abs { y } else { cur.1 + y }),
+            P::EllipticalArc {
+                abs, rx, ry, x, y, ..
+            } => {
+                let end = to(abs, x, y);
+                let half_chord = 0.5 * (end.0 - cur.0).hypot(end.1 - cur.1);
+                let r = rx.abs().max(ry.abs()).max(half_chord);
+                if !(r <= MAX_ARC_RADIUS) {
+                    return Err(crate::error::Error::input(
+                        name,
+                        format!(
+                            "path data has an arc of radius {r:e}, too large to draw (at most \
+                             {MAX_ARC_RADIUS:e})"
+                        ),
+                    ));
+                }
+                end
+            }
+            P::ClosePath { .. } => start,
+        };
+        cur = next;
+    }
+    Ok(n)
+}
+
 /// The segments an element's geometry attributes describe: the commands of `d`, the points of
 /// `points`. An arc whose radius is beyond [`MAX_ARC_RADIUS`] is an error.
 fn path_segments(name: &str, e: &BytesStart<'_>) -> Result<usize> {
@@ -69,23 +115,7 @@ fn path_segments(name: &str, e: &BytesStart<'_>) -> Result<usize> {
     for a in e.attributes().flatten() {
         let key = a.key.local_name();
         match key.as_ref() {
-            "d" => {
-                for seg in svgtypes::PathParser::from(a.value.as_ref()) {
-                    n += 1;
-                    if let Ok(svgtypes::PathSegment::EllipticalArc { rx, ry, .. }) = seg {
-                        let r = rx.abs().max(ry.abs());
-                        if !(r <= MAX_ARC_RADIUS) {
-                            return Err(crate::error::Error::input(
-                                name,
-                                format!(
-                                    "path data has an arc of radius {r:e}, too large to draw \
-                                     (at most {MAX_ARC_RADIUS:e})"
-                                ),
-                            ));
-                        }
-                    }
-                }
-            }
+            "d" => n += path_data_segments(name, a.value.as_ref())?,
             "points" => {
                 n += svgtypes::PointsParser::from(a.value.as_ref()).count();
             }
