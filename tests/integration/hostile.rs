@@ -182,8 +182,16 @@ fn drawing() -> impl Strategy<Value = String> {
     })
 }
 
+/// Cases per run: 48, or `PROPTEST_CASES` for a long hunt.
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(48)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
 
     #[test]
     fn hostile_drawings_are_survived(source in drawing(), target in prop_oneof![
