@@ -152,7 +152,8 @@ fn group(g: &Group, r: &Region, m: Affine, next: &mut usize, far: &mut Vec<FarPa
             .shapes
             .iter()
             .map(|s| super::ClipShape {
-                path: bound(&s.path, r, true).map_or_else(BezPath::new, |(p, _)| p),
+                // A shape within reach as it is stays as it is.
+                path: bound(&s.path, r, true).map_or_else(|| s.path.clone(), |(p, _)| p),
                 even_odd: s.even_odd,
             })
             .collect(),
@@ -508,6 +509,18 @@ mod tests {
         p.curve_to((290.0, -190.0), (50.0, 290.0), (10.0, 10.0));
         p.close_path();
         assert!(bound(&p, &region(), true).is_none());
+    }
+
+    #[test]
+    fn a_scene_within_reach_comes_back_equal_clips_included() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+          <clipPath id="c"><circle cx="0" cy="0" r="19"/></clipPath>
+          <g transform="translate(70 50)" clip-path="url(#c)"><rect x="-20" y="-12" width="40" height="24"/></g>
+          <rect x="5" y="5" width="50" height="50" fill="red"/></svg>"#;
+        let scene = Scene::from_svg("a.svg", svg, "controls").unwrap();
+        let (within, far) = within_reach(&scene);
+        assert!(far.is_empty());
+        assert_eq!(within.root, scene.root);
     }
 
     #[test]
