@@ -170,7 +170,8 @@ impl Morph {
         (match export {
             Export::Gif => gif_renders(&tl, self.frame.size),
             Export::Apng => playback_schedule(&tl, APNG_MIN_DELAY).len(),
-            Export::Frames | Export::AnimatedSvg => tl.frames,
+            Export::Frames => tl.frames,
+            Export::AnimatedSvg => tl.keyframes().frames,
         }) as u64
     }
 
@@ -450,12 +451,14 @@ impl Morph {
         String::from_utf8(out).map_err(|_| crate::Error::internal("the SVG is not UTF-8"))
     }
 
-    /// [`Morph::animated_svg`] written to `out` as it is serialized. Keyframes are made a
+    /// [`Morph::animated_svg`] written to `out` as it is serialized. The timeline's frames are
+    /// the keyframes, at most [`Timeline::keyframes`] of them (120 a second: more are never
+    /// drawn, the player interpolates between them). Keyframes are made a
     /// chunk at a time; what stays in memory until the end is every keyframe's attribute
     /// values, packed (see [`crate::render::animated`]): about 16 bytes per vertex of the
     /// warped artwork per frame.
     pub fn write_animated_svg(&self, timeline: &Timeline, out: impl Write) -> Result<()> {
-        let tl = timeline.sanitized();
+        let tl = timeline.keyframes();
         let ts = tl.morph_times();
         let trees = |frames: &[usize]| -> Result<Vec<Node>> {
             let times: Vec<f64> = frames.iter().map(|&i| ts[i]).collect();

@@ -68,6 +68,10 @@ impl Default for Timeline {
     }
 }
 
+/// Keyframes per second of an animated SVG at most: twice the 60 Hz most displays run at, and
+/// the rate of the fastest common ones.
+pub const MAX_KEYFRAMES_PER_SECOND: f64 = 120.0;
+
 impl Timeline {
     /// Frame count clamped to at least 2 and duration to a positive finite number of seconds,
     /// so that every derived quantity is well defined.
@@ -80,6 +84,19 @@ impl Timeline {
                 Timeline::default().duration
             },
             ..self
+        }
+    }
+
+    /// The timeline an animation whose player interpolates between keyframes (SMIL) needs:
+    /// at most [`MAX_KEYFRAMES_PER_SECOND`] keyframes per second of `duration`, since a browser
+    /// draws no more than that; a timeline within the rate comes back as it is. Memory and
+    /// file size then stop growing with `frames` (issue 12, item 4).
+    pub fn keyframes(self) -> Self {
+        let tl = self.sanitized();
+        let most = (tl.duration * MAX_KEYFRAMES_PER_SECOND).ceil() as usize + 1;
+        Timeline {
+            frames: tl.frames.min(most.max(2)),
+            ..tl
         }
     }
 
@@ -130,6 +147,23 @@ impl Timeline {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn keyframes_stop_at_what_a_display_draws() {
+        let tl = |frames, duration| Timeline {
+            frames,
+            duration,
+            ..Timeline::default()
+        };
+        assert_eq!(
+            tl(60, 2.0).keyframes(),
+            tl(60, 2.0),
+            "within the rate: as it is"
+        );
+        assert_eq!(tl(10_000, 2.0).keyframes().frames, 241);
+        assert_eq!(tl(10_000, 0.01).keyframes().frames, 3);
+        assert_eq!(tl(500, 100.0).keyframes().frames, 500);
+    }
 
     #[test]
     fn easing_is_exact_at_the_ends_and_monotone() {
