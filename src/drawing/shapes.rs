@@ -111,7 +111,7 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
         "rect" => {
             let (x, y) = (length(el, "x", 0.0)?, length(el, "y", 0.0)?);
             let (w, h) = (length(el, "width", 0.0)?, length(el, "height", 0.0)?);
-            if !(w >= 0.0 && h >= 0.0) {
+            if w.is_nan() || h.is_nan() || w < 0.0 || h < 0.0 {
                 return Err(format!("has a negative width or height ({w} × {h})"));
             }
             let rx = el.attr("rx").map(|_| length(el, "rx", 0.0)).transpose()?;
@@ -136,7 +136,7 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
         "circle" => {
             let c = (length(el, "cx", 0.0)?, length(el, "cy", 0.0)?);
             let r = length(el, "r", 0.0)?;
-            if !(r >= 0.0) {
+            if r.is_nan() || r < 0.0 {
                 return Err(format!("has a negative radius ({r})"));
             }
             p = kurbo::Circle::new(c, r).to_path(SHAPE_ACCURACY * r.max(1.0));
@@ -144,7 +144,7 @@ pub(crate) fn outline(el: &Element) -> ShapeResult<BezPath> {
         "ellipse" => {
             let c = (length(el, "cx", 0.0)?, length(el, "cy", 0.0)?);
             let (rx, ry) = (length(el, "rx", 0.0)?, length(el, "ry", 0.0)?);
-            if !(rx >= 0.0 && ry >= 0.0) {
+            if rx.is_nan() || ry.is_nan() || rx < 0.0 || ry < 0.0 {
                 return Err(format!("has a negative radius ({rx}, {ry})"));
             }
             p = kurbo::Ellipse::new(c, (rx, ry), 0.0).to_path(SHAPE_ACCURACY * rx.max(ry).max(1.0));

@@ -90,7 +90,7 @@ fn path_data_segments(name: &str, d: &str) -> Result<usize> {
                 let end = to(abs, x, y);
                 let half_chord = 0.5 * (end.0 - cur.0).hypot(end.1 - cur.1);
                 let r = rx.abs().max(ry.abs()).max(half_chord);
-                if !(r <= MAX_ARC_RADIUS) {
+                if r.is_nan() || r > MAX_ARC_RADIUS {
                     return Err(crate::error::Error::input(
                         name,
                         format!(
