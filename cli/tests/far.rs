@@ -5,58 +5,18 @@
 //! naming `--max-vertices`, with no output left behind.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-/// What one run of the CLI did.
-struct Run {
-    code: Option<i32>,
-    stderr: String,
-    seconds: f64,
-    /// Peak resident memory in KiB, from the child's own `/proc/<pid>/status` (`VmHWM`), polled
-    /// while it runs (`None` where there is no `/proc`).
-    peak_kib: Option<u64>,
-}
+#[path = "common/measure.rs"]
+mod measure;
 
-/// Runs `crmorph args…`, killing it after `limit`.
+use measure::Outcome as Run;
+
+/// Runs `crmorph args…`; running past `limit` fails the test.
 fn run(args: &[&str], limit: Duration) -> Run {
-    let start = Instant::now();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_crmorph"))
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let status = format!("/proc/{}/status", child.id());
-    let mut peak = None;
-    let code = loop {
-        if let Ok(s) = std::fs::read_to_string(&status) {
-            if let Some(kib) = s
-                .lines()
-                .find_map(|l| l.strip_prefix("VmHWM:"))
-                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
-            {
-                peak = Some(peak.unwrap_or(0).max(kib));
-            }
-        }
-        if let Some(st) = child.try_wait().unwrap() {
-            break st.code();
-        }
-        if start.elapsed() > limit {
-            child.kill().unwrap();
-            child.wait().unwrap();
-            panic!("crmorph {args:?} ran past {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    Run {
-        code,
-        stderr,
-        seconds: start.elapsed().as_secs_f64(),
-        peak_kib: peak,
-    }
+    let r = measure::run(args, limit.as_secs_f64());
+    assert!(!r.timed_out, "crmorph {args:?} ran past {limit:?}");
+    r
 }
 
 const TIME: Duration = Duration::from_secs(5);
@@ -96,10 +56,8 @@ fn morph(dir: &Path, source: &str, command: &str, out: &str, extra: &[&str]) -> 
 }
 
 fn assert_bounded(r: &Run, what: &str) {
-    assert!(r.seconds < TIME.as_secs_f64(), "{what}: {:.2} s", r.seconds);
-    if let Some(kib) = r.peak_kib {
-        assert!(kib < GIB_KIB, "{what}: peak {kib} KiB");
-    }
+    assert!(r.secs < TIME.as_secs_f64(), "{what}: {:.2} s", r.secs);
+    assert!(r.peak_kib < GIB_KIB, "{what}: peak {} KiB", r.peak_kib);
 }
 
 /// Every hostile part of rows 4 and 6: each morphs (frame and animation) in bounded time and
@@ -177,7 +135,7 @@ fn a_density_past_the_vertex_budget_is_one_line_naming_the_flag() {
             lines[0]
         );
         assert_bounded(&r, "--density 50");
-        assert!(r.seconds < 1.0, "refused in {:.2} s", r.seconds);
+        assert!(r.secs < 1.0, "refused in {:.2} s", r.secs);
     }
     // At the default density the same pair morphs.
     let (r, written) = morph(dir.path(), &icon(""), "frame", "d.svg", &[]);

@@ -5,7 +5,7 @@
 
 use std::ffi::{OsStr, OsString};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Command};
 use std::time::{Duration, Instant};
 
 fn fixture(p: &str) -> PathBuf {
@@ -18,59 +18,23 @@ fn gourd() -> [PathBuf; 2] {
     [fixture("gourd/source.svg"), fixture("gourd/target.svg")]
 }
 
-fn spawn<S: AsRef<OsStr>>(args: &[S]) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_crmorph"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap()
-}
+#[path = "common/measure.rs"]
+mod measure;
 
-/// The peak resident memory of a running process in KiB (`VmHWM`, a high-water mark, so a
-/// read shortly before the end holds the peak), if it can be read.
-fn peak_kib(pid: u32) -> Option<u64> {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
+use measure::{spawn, Outcome as Run};
 
-/// A finished run: its output, how long it took and its peak memory in MiB (0 where `/proc`
-/// cannot tell).
-struct Run {
-    out: Output,
-    secs: f64,
-    peak_mib: u64,
-}
-
-/// Waits for `child`, reading its peak memory every few milliseconds meanwhile.
-fn finish(mut child: Child, start: Instant) -> Run {
-    let pid = child.id();
-    let mut peak = 0;
-    while child.try_wait().unwrap().is_none() {
-        peak = peak.max(peak_kib(pid).unwrap_or(0));
-        std::thread::sleep(Duration::from_millis(3));
-    }
-    let out = child.wait_with_output().unwrap();
-    Run {
-        out,
-        secs: start.elapsed().as_secs_f64(),
-        peak_mib: peak / 1024,
-    }
+/// Waits for `child` (no deadline a test should meet: a minute).
+fn finish(child: Child, start: Instant) -> Run {
+    measure::watch(child, start, 60.0)
 }
 
 fn run<S: AsRef<OsStr>>(args: &[S]) -> Run {
-    let start = Instant::now();
-    finish(spawn(args), start)
+    measure::run(args, 60.0)
 }
 
 /// Command-line arguments of any string or path type, owned.
 fn argv(items: &[&dyn AsRef<OsStr>]) -> Vec<OsString> {
     items.iter().map(|a| a.as_ref().to_owned()).collect()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// The names in `dir`, sorted.
@@ -155,16 +119,16 @@ fn a_drawing_too_large_to_rasterize_is_a_prompt_one_line_error() {
     ];
     for args in cases {
         let r = run(&args);
-        let err = stderr(&r.out);
+        let err = r.stderr.clone();
         let what = format!("{args:?}");
-        assert_eq!(r.out.status.code(), Some(1), "{what}: {err}");
+        assert_eq!(r.code, Some(1), "{what}: {err}");
         assert_eq!(err.trim_end().lines().count(), 1, "{what}: {err}");
         assert!(
             err.contains("--max-pixels") && err.contains("huge.svg"),
             "{what}: {err}"
         );
         assert!(r.secs < 5.0, "{what}: {} s", r.secs);
-        assert!(r.peak_mib < 1024, "{what}: {} MiB", r.peak_mib);
+        assert!(r.peak_mib() < 1024, "{what}: {} MiB", r.peak_mib());
         assert_eq!(listing(d), inputs, "{what}: nothing left behind");
     }
     // Raising the limit is the way out: the same inspect picture is written.
@@ -177,7 +141,7 @@ fn a_drawing_too_large_to_rasterize_is_a_prompt_one_line_error() {
         &"--width",
         &"400",
     ]));
-    assert!(r.out.status.success(), "{}", stderr(&r.out));
+    assert!((r.code == Some(0)), "{}", r.stderr);
 }
 
 /// Row 7: frames are rendered and encoded a chunk at a time, so the peak memory of a GIF, an
@@ -216,9 +180,9 @@ fn memory_stays_flat_as_frames_grow() {
                 ]));
             }
             let r = run(&args);
-            assert!(r.out.status.success(), "{what}: {}", stderr(&r.out));
+            assert!((r.code == Some(0)), "{what}: {}", r.stderr);
             assert!(r.secs < 20.0, "{what} {frames}: {} s", r.secs);
-            r.peak_mib
+            r.peak_mib()
         };
         let (small, large) = (peak("60"), peak("600"));
         println!("{what}: 60 frames {small} MiB, 600 frames {large} MiB");
@@ -255,12 +219,8 @@ fn slow_morph_in(dir: &Path, extra: &[&str]) -> (Child, Instant, String) {
         }
         if start.elapsed() > Duration::from_secs(20) || child.try_wait().unwrap().is_some() {
             let _ = child.kill();
-            let out = child.wait_with_output().unwrap();
-            panic!(
-                "no temporary appeared: {:?}, {}",
-                listing(dir),
-                stderr(&out)
-            );
+            let out = finish(child, start);
+            panic!("no temporary appeared: {:?}, {}", listing(dir), out.stderr);
         }
         std::thread::sleep(Duration::from_millis(5));
     }
@@ -294,14 +254,9 @@ fn a_signal_mid_write_leaves_no_temporary() {
         signal(child.id(), sig);
         let r = finish(child, sent);
         let what = format!("SIG{sig} {extra:?} during {tmp}");
-        assert_eq!(
-            r.out.status.code(),
-            Some(code),
-            "{what}: {}",
-            stderr(&r.out)
-        );
+        assert_eq!(r.code, Some(code), "{what}: {}", r.stderr);
         assert!(r.secs < 5.0, "{what}: {} s to stop", r.secs);
-        assert!(r.peak_mib < 1024, "{what}: {} MiB", r.peak_mib);
+        assert!(r.peak_mib() < 1024, "{what}: {} MiB", r.peak_mib());
         assert_eq!(listing(d), Vec::<String>::new(), "{what}: left behind");
     }
 }
@@ -318,7 +273,7 @@ fn temporaries_left_by_a_kill_are_removed_by_the_next_run() {
     assert!(tmp.contains(&format!("-{pid}-")), "{tmp} names the process");
     signal(pid, "KILL");
     let r = finish(child, Instant::now());
-    assert_eq!(r.out.status.code(), None, "killed");
+    assert_eq!(r.code, None, "killed");
     assert!(listing(d).contains(&tmp), "SIGKILL leaves {tmp}");
     // A staging folder a killed run left, and a temporary of a live process (this test's).
     let stale_dir = d.join(".crmorph-frames-999999999-abcdef");
@@ -340,7 +295,7 @@ fn temporaries_left_by_a_kill_are_removed_by_the_next_run() {
         &"--size",
         &"32x32",
     ]));
-    assert!(r.out.status.success(), "{}", stderr(&r.out));
+    assert!((r.code == Some(0)), "{}", r.stderr);
     assert!(r.secs < 10.0, "{} s", r.secs);
     assert_eq!(listing(d), [live.as_str(), "m.gif", "notes.txt"]);
 }
