@@ -8,7 +8,6 @@
 use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
-use crate::input::Limits;
 use crate::mapping::{composite_map, MappingOptions, MappingStats};
 use crate::mesh::CompatibleMeshes;
 use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
@@ -27,9 +26,6 @@ pub struct MorphOptions {
     pub correspondence: CorrespondenceOptions,
     /// Composite mapping options. Default: [`MappingOptions::default`].
     pub mapping: MappingOptions,
-    /// The resource limits; [`Limits::vertices`] bounds the meshes, checked before they are
-    /// built ([`crate::budget`]). Default: [`Limits::default`].
-    pub limits: Limits,
 }
 
 /// The result of [`build`]: compatible meshes and what they were made from.
@@ -201,7 +197,8 @@ fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) 
     }
     let v = crate::budget::mesh_vertices(&side(source), &side(target), &tol);
     let files = format!("{} → {}", source.file, target.file);
-    crate::budget::check(v, opts.density, &files, &opts.limits)
+    // The source drawing's limits (both come from the same options in the CLI).
+    crate::budget::check(v, opts.density, &files, &source.policy.limits)
 }
 
 /// Builds compatible triangulations of two drawings (§3, §5).

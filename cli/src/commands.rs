@@ -416,7 +416,6 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
     let mut opts = MorphOptions::default();
     opts.from_target = inputs.from == From::Target;
     opts.density = inputs.density;
-    opts.limits = inputs.safety.policy().limits;
     progress.stage("compatible triangulation");
     if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
         // Plain SVGs: control geometry from the artwork (automatic mode).

@@ -211,13 +211,14 @@ pub fn build_auto(
     let (source_scene, target_scene) = (&source_scene, &target_scene);
     let tol = source.tolerances.flatten.min(target.tolerances.flatten);
     let (cs, ct) = (
-        contours(source_scene, tol, &opts.limits)?,
-        contours(target_scene, tol, &opts.limits)?,
+        contours(source_scene, tol, &source.policy.limits)?,
+        contours(target_scene, tol, &target.policy.limits)?,
     );
     for (d, c) in [(source, &cs), (target, &ct)] {
-        if c.len() > opts.limits.shapes {
+        let limits = &d.policy.limits;
+        if c.len() > limits.shapes {
             let what = format!("{} shapes to pair in automatic mode", c.len());
-            return Err(crate::input::Limit::Shapes.exceeded(&d.file, &what, &opts.limits));
+            return Err(crate::input::Limit::Shapes.exceeded(&d.file, &what, limits));
         }
     }
     let diagonal = source.tolerances.diagonal.max(target.tolerances.diagonal);
@@ -406,7 +407,7 @@ fn check_vertex_budget(
         total += crate::budget::mesh_vertices(&s, &t, &tol);
     }
     let files = format!("{} → {}", source.file, target.file);
-    crate::budget::check(total, opts.density, &files, &opts.limits)
+    crate::budget::check(total, opts.density, &files, &source.policy.limits)
 }
 
 /// The best-fit turn of the paired outlines' centroids from source to target, when there are

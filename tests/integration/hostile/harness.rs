@@ -46,8 +46,7 @@ pub(crate) fn morph_once(source: &[u8], target: &[u8]) -> crmorph::Result<()> {
     };
     let (s, t) = (read("source.svg", source)?, read("target.svg", target)?);
     let (ss, ts) = (Scene::from_drawing(&s)?, Scene::from_drawing(&t)?);
-    let mut morph_opts = MorphOptions::default();
-    morph_opts.limits = opts.policy.limits;
+    let morph_opts = MorphOptions::default();
     let (compatible, paths) = if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
         let (c, report, _, _) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &morph_opts)?;
         (c, report.morphing)
