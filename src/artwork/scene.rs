@@ -245,7 +245,8 @@ impl Scene {
     /// The artwork of a drawing read with [`Drawing::open`](crate::drawing::Drawing::open) or
     /// `from_str`, under the drawing's own policy and folder.
     pub fn from_drawing(d: &crate::drawing::Drawing) -> Result<Scene> {
-        Self::from_svg_with(
+        // `d.svg` was prepared when the drawing was read: not again.
+        Self::from_prepared(
             &d.file,
             &d.svg,
             &d.guides_group,
@@ -264,6 +265,17 @@ impl Scene {
         policy: &InputPolicy,
     ) -> Result<Scene> {
         let svg = &*crate::input::prepare(file, svg, &policy.limits)?;
+        Self::from_prepared(file, svg, guides_group_id, dir, policy)
+    }
+
+    /// [`Scene::from_svg_with`] for text that has been through [`crate::input::prepare`].
+    fn from_prepared(
+        file: &str,
+        svg: &str,
+        guides_group_id: &str,
+        dir: Option<&Path>,
+        policy: &InputPolicy,
+    ) -> Result<Scene> {
         let tree = usvg::Tree::from_str(svg, &usvg_options(file, svg, dir, policy))
             .map_err(|e| Error::input(file, format!("not a usable SVG file: {e}")))?;
         // `<use>` copies what it references: a small file can expand to many elements.
