@@ -30,12 +30,11 @@ use crate::geometry::Point;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Conj, MatMut, Par, Side};
+use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::{Par, Side};
 
 /// Collects the constant matrix of a least-squares vertex energy before it is factored.
 ///
@@ -143,6 +142,10 @@ impl SystemBuilder {
             }
             comp[v as usize] = comp_of_root[r];
         }
+        let mut size = vec![0.0f64; comp_count as usize];
+        for &c in &comp {
+            size[c as usize] += 1.0;
+        }
         let mut comp_anchored = vec![false; comp_count as usize];
         for v in 0..n {
             if self.anchored[v] {
@@ -185,47 +188,22 @@ impl SystemBuilder {
         } else {
             let a = SparseColMat::<u32, f64>::try_new_from_triplets(n_red, n_red, &triplets)
                 .map_err(|e| Error::internal(format!("assembling the rigid system: {e:?}")))?;
-            // Simplicial, not faer's flop-based choice: the factor is computed once and solved
-            // with every frame, and simplicial solves measured faster (100k-vertex grid:
-            // 14.2 ms against 25.4 ms per frame with the supernodal factor).
-            let params = CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
-                ..Default::default()
-            };
-            let symbolic = factorize_symbolic_cholesky(
-                a.symbolic(),
-                Side::Upper,
-                SymmetricOrdering::Amd,
-                params,
-            )
-            .map_err(|e| {
-                Error::internal(format!("symbolic Cholesky of the rigid system: {e:?}"))
-            })?;
-            let mut values = vec![0.0f64; symbolic.len_val()];
-            let mut mem = MemBuffer::try_new(
-                symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            )
-            .map_err(|e| Error::internal(format!("allocating the Cholesky scratch: {e:?}")))?;
-            symbolic
-                .factorize_numeric_llt(
-                    &mut values,
-                    a.as_ref(),
-                    Side::Upper,
-                    LltRegularization::default(),
-                    Par::Seq,
-                    MemStack::new(&mut mem),
-                    Default::default(),
-                )
-                .map_err(|e| {
-                    Error::internal(format!("the rigid system is not positive definite: {e:?}"))
-                })?;
-            Some((symbolic, values))
+            let factor = Factor::new(a.as_ref())?;
+            // The rows go straight to their place in the factor's ordering, so a frame never
+            // permutes its right-hand side or its solution.
+            for r in reduced.iter_mut() {
+                if (*r as usize) < n_red {
+                    *r = factor.position[*r as usize];
+                }
+            }
+            Some(factor)
         };
         Ok(FactoredSystem {
             n,
             n_red,
             reduced,
             comp,
+            size,
             comp_anchored,
             pins,
             factor,
@@ -243,26 +221,147 @@ pub(crate) struct FactoredSystem {
     reduced: Vec<u32>,
     /// Connected component of each vertex.
     comp: Vec<u32>,
+    /// Number of vertices of each component.
+    size: Vec<f64>,
     /// Whether a component is fixed by extra rows (no centroid translation).
     comp_anchored: Vec<bool>,
     /// The pinned vertex of every free component.
     pins: Vec<u32>,
-    factor: Option<(SymbolicCholesky<u32>, Vec<f64>)>,
+    factor: Option<Factor>,
 }
 
 /// Per-thread scratch of a [`FactoredSystem`] solve.
+#[derive(Debug)]
 pub(crate) struct SolveScratch {
-    /// Right-hand side, column-major `(n_red + 1) × 2` (x then y; the last row is the dummy).
-    pub(crate) rhs: Vec<f64>,
-    sums: Vec<(Point, f64)>,
-    mem: MemBuffer,
+    /// Right-hand side, one `(x, y)` row per reduced vertex in the factor's ordering (rows
+    /// from [`FactoredSystem::rhs_index`]), and a last dummy row that pinned vertices write to.
+    pub(crate) rhs: Vec<Point>,
+    sums: Vec<Point>,
 }
 
-impl std::fmt::Debug for SolveScratch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SolveScratch")
-            .field("rows", &(self.rhs.len() / 2))
-            .finish_non_exhaustive()
+/// The Cholesky factor `L` of the reduced system `P A Pᵀ = L Lᵀ`, kept in the form a frame's
+/// two triangular solves read: compressed columns with 32-bit row indices, the diagonal apart
+/// and inverted. Both coordinates are solved in one pass over `L` (one index and one value read
+/// per nonzero for `x` and `y` together), and the right-hand side is written in the factor's
+/// ordering (`position`), so a frame neither permutes nor divides.
+#[derive(Debug)]
+struct Factor {
+    /// `position[r]`: the row of reduced row `r` in the factor's ordering (`P`).
+    position: Vec<u32>,
+    /// `1 / L[j, j]`.
+    inv_diag: Vec<f64>,
+    /// Start of column `j`'s entries below the diagonal in `rows` and `values`.
+    col_ptr: Vec<u32>,
+    rows: Vec<u32>,
+    values: Vec<f64>,
+}
+
+impl Factor {
+    /// Orders (AMD), analyses and factors the symmetric positive definite `a` (upper triangle
+    /// given) with faer's simplicial `LLᵀ`, then lays the factor out for solving.
+    fn new(a: SparseColMatRef<'_, u32, f64>) -> Result<Self> {
+        let n = a.nrows();
+        // Simplicial, not faer's flop-based choice: the factor is computed once and solved
+        // with every frame, and simplicial solves measured faster (100k-vertex grid:
+        // 14.2 ms against 25.4 ms per frame with the supernodal factor).
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+            ..Default::default()
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(a.symbolic(), Side::Upper, SymmetricOrdering::Amd, params)
+                .map_err(|e| {
+                    Error::internal(format!("symbolic Cholesky of the rigid system: {e:?}"))
+                })?;
+        let mut values = vec![0.0f64; symbolic.len_val()];
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .map_err(|e| Error::internal(format!("allocating the Cholesky scratch: {e:?}")))?;
+        symbolic
+            .factorize_numeric_llt(
+                &mut values,
+                a,
+                Side::Upper,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|e| {
+                Error::internal(format!("the rigid system is not positive definite: {e:?}"))
+            })?;
+        let SymbolicCholeskyRaw::Simplicial(l) = symbolic.raw() else {
+            return Err(Error::internal(
+                "the rigid system's factor is not simplicial",
+            ));
+        };
+        let position = match symbolic.perm() {
+            Some(p) => p.arrays().1.to_vec(),
+            None => (0..n as u32).collect(),
+        };
+        let (ptr, idx) = (l.col_ptr(), l.row_idx());
+        let mut inv_diag = Vec::with_capacity(n);
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut rows = Vec::with_capacity(idx.len().saturating_sub(n));
+        let mut below = Vec::with_capacity(idx.len().saturating_sub(n));
+        col_ptr.push(0u32);
+        for j in 0..n {
+            let (start, end) = (ptr[j] as usize, ptr[j + 1] as usize);
+            // faer stores each column's diagonal entry first.
+            if start == end || idx[start] as usize != j {
+                return Err(Error::internal("the rigid system's factor has no diagonal"));
+            }
+            inv_diag.push(1.0 / values[start]);
+            rows.extend_from_slice(&idx[start + 1..end]);
+            below.extend_from_slice(&values[start + 1..end]);
+            col_ptr.push(rows.len() as u32);
+        }
+        Ok(Factor {
+            position,
+            inv_diag,
+            col_ptr,
+            rows,
+            values: below,
+        })
+    }
+
+    /// Overwrites `b` (the first `n` rows, in the factor's ordering) with `(L Lᵀ)⁻¹ b`.
+    fn solve_in_place(&self, b: &mut [Point]) {
+        let n = self.inv_diag.len();
+        let b = &mut b[..n];
+        // L y = b, column by column.
+        for j in 0..n {
+            let yj = b[j] * self.inv_diag[j];
+            b[j] = yj;
+            let (s, e) = (self.col_ptr[j] as usize, self.col_ptr[j + 1] as usize);
+            for (&i, &l) in self.rows[s..e].iter().zip(&self.values[s..e]) {
+                b[i as usize] -= yj * l;
+            }
+        }
+        // Lᵀ x = y, from the last column back.
+        for j in (0..n).rev() {
+            let (s, e) = (self.col_ptr[j] as usize, self.col_ptr[j + 1] as usize);
+            // Four partial sums: one running sum would wait on every addition.
+            let (rows, vals) = (&self.rows[s..e], &self.values[s..e]);
+            let mut acc = [Point::ZERO; 4];
+            let mut quads = rows.chunks_exact(4).zip(vals.chunks_exact(4));
+            for (r, v) in &mut quads {
+                for k in 0..4 {
+                    acc[k] += b[r[k] as usize] * v[k];
+                }
+            }
+            let tail = rows.len() - rows.len() % 4;
+            for (&i, &l) in rows[tail..].iter().zip(&vals[tail..]) {
+                acc[0] += b[i as usize] * l;
+            }
+            b[j] = (b[j] - ((acc[0] + acc[1]) + (acc[2] + acc[3]))) * self.inv_diag[j];
+        }
+    }
+
+    /// Nonzeros of `L`, its diagonal included.
+    fn nonzeros(&self) -> usize {
+        self.rows.len() + self.inv_diag.len()
     }
 }
 
@@ -296,66 +395,68 @@ impl FactoredSystem {
 
     /// Scratch buffers sized for this system.
     pub(crate) fn scratch(&self) -> SolveScratch {
-        let req = match &self.factor {
-            Some((s, _)) => s.solve_in_place_scratch::<f64>(2, Par::Seq),
-            None => faer::dyn_stack::StackReq::EMPTY,
-        };
         SolveScratch {
-            rhs: vec![0.0; 2 * (self.n_red + 1)],
-            sums: vec![(Point::ZERO, 0.0); self.component_count()],
-            mem: MemBuffer::new(req),
+            rhs: vec![Point::ZERO; self.n_red + 1],
+            sums: vec![Point::ZERO; self.component_count()],
         }
+    }
+
+    /// Nonzeros of the Cholesky factor (0 when every vertex is pinned): what a frame's solve
+    /// reads twice.
+    #[allow(dead_code)]
+    pub(crate) fn factor_nonzeros(&self) -> usize {
+        self.factor.as_ref().map_or(0, Factor::nonzeros)
     }
 
     /// Clears the right-hand side (for callers that fill it row by row, e.g. with extra rows).
     #[cfg_attr(not(test), allow(dead_code))]
     #[inline]
     pub(crate) fn clear_rhs(&self, s: &mut SolveScratch) {
-        s.rhs.fill(0.0);
+        s.rhs.fill(Point::ZERO);
     }
 
     /// Adds `b` to the right-hand side row of vertex `v` (e.g. `w·c_k·J` of an extra row).
     #[cfg_attr(not(test), allow(dead_code))]
     #[inline]
     pub(crate) fn add_rhs(&self, s: &mut SolveScratch, v: u32, b: Point) {
-        let r = self.rhs_index(v);
-        let stride = self.n_red + 1;
-        s.rhs[r] += b.x;
-        s.rhs[stride + r] += b.y;
+        s.rhs[self.rhs_index(v)] += b;
     }
 
     /// Solves for the right-hand side in `s.rhs` and writes every vertex into `out`, translating
     /// each free component so its vertex centroid is `centroids[component]` (module docs).
     pub(crate) fn solve(&self, s: &mut SolveScratch, centroids: &[Point], out: &mut [Point]) {
         debug_assert_eq!(out.len(), self.n);
-        let stride = self.n_red + 1;
-        if let Some((symbolic, values)) = &self.factor {
-            let llt = LltRef::<u32, f64>::new(symbolic, values);
-            let rhs = MatMut::from_column_major_slice_mut(&mut s.rhs[..], stride, 2);
-            let rhs = rhs.subrows_mut(0, self.n_red);
-            llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut s.mem));
+        if let Some(f) = &self.factor {
+            f.solve_in_place(&mut s.rhs);
         }
-        s.sums.fill((Point::ZERO, 0.0));
-        for (v, o) in out.iter_mut().enumerate() {
-            let r = self.reduced[v] as usize;
-            *o = if r < self.n_red {
-                Point::new(s.rhs[r], s.rhs[stride + r])
-            } else {
-                Point::ZERO
-            };
-            let acc = &mut s.sums[self.comp[v] as usize];
-            acc.0 += *o;
-            acc.1 += 1.0;
+        // The dummy row holds the pinned vertices: at the origin before translation.
+        s.rhs[self.n_red] = Point::ZERO;
+        s.sums.fill(Point::ZERO);
+        // Components are mostly runs of consecutive vertices: sum a run in a register, not
+        // through memory one vertex after the other.
+        let (mut run, mut sum) = (u32::MAX, Point::ZERO);
+        for ((o, &r), &c) in out.iter_mut().zip(&self.reduced).zip(&self.comp) {
+            *o = s.rhs[r as usize];
+            if c != run {
+                if run != u32::MAX {
+                    s.sums[run as usize] += sum;
+                }
+                (run, sum) = (c, Point::ZERO);
+            }
+            sum += *o;
+        }
+        if run != u32::MAX {
+            s.sums[run as usize] += sum;
         }
         for (c, acc) in s.sums.iter_mut().enumerate() {
-            acc.0 = if self.comp_anchored[c] {
+            *acc = if self.comp_anchored[c] {
                 Point::ZERO
             } else {
-                centroids[c] - acc.0 / acc.1
+                centroids[c] - *acc / self.size[c]
             };
         }
-        for (v, o) in out.iter_mut().enumerate() {
-            *o += s.sums[self.comp[v] as usize].0;
+        for (o, &c) in out.iter_mut().zip(&self.comp) {
+            *o += s.sums[c as usize];
         }
     }
 }

@@ -41,6 +41,9 @@ use super::sincos::sin_cos_many;
 use crate::error::{Error, Result};
 use crate::geometry::{bounding_box, Point};
 
+/// Terms whose rotations are computed together in a frame: small enough for the stack and L1.
+const CHUNK: usize = 64;
+
 /// Disc edges shorter than this fraction of the point set's bounding-box diagonal have no
 /// meaningful direction and are rejected as coincident points.
 const MIN_EDGE_FRACTION: f64 = 1e-12;
@@ -189,9 +192,6 @@ impl LocalTransforms {
 /// One precomputed term of the per-frame right-hand side.
 #[derive(Debug, Clone, Copy)]
 struct EdgeTerm {
-    /// The edge's end points.
-    vi: u32,
-    vj: u32,
     /// Right-hand-side rows of the edge's end points.
     ri: u32,
     rj: u32,
@@ -218,6 +218,8 @@ pub(crate) struct ExtraRow {
 #[derive(Debug)]
 pub(crate) struct DiscRigid {
     terms: Vec<EdgeTerm>,
+    /// The end points `(i, j)` of each term's edge (for the bone adjustments of §4.2.2).
+    ends: Vec<(u32, u32)>,
     /// Consistent rotation angle of each term (§4.1.1).
     alpha: Vec<f64>,
     extra: Vec<ExtraRow>,
@@ -353,8 +355,6 @@ impl DiscRigid {
             .iter()
             .enumerate()
             .map(|(k, &(i, j))| EdgeTerm {
-                vi: i,
-                vj: j,
                 ri: system.rhs_index(i) as u32,
                 rj: system.rhs_index(j) as u32,
                 wd: local.d[k] * local.weight[k],
@@ -388,6 +388,7 @@ impl DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
             centroid_target: component_centroids(system.components(), count, target),
             terms,
+            ends: local.edges.clone(),
             alpha,
             extra,
             system,
@@ -414,9 +415,9 @@ impl DiscRigid {
         // A part that is the same at both ends (a badge's background under a changing glyph)
         // stands still rather than riding the figure's motion.
         let mut moves = vec![false; count];
-        for (e, &al) in self.terms.iter().zip(&self.alpha) {
+        for ((e, &al), &(vi, _)) in self.terms.iter().zip(&self.alpha).zip(&self.ends) {
             if al != 0.0 || e.s1 != 0.0 {
-                moves[comp[e.vi as usize] as usize] = true;
+                moves[comp[vi as usize] as usize] = true;
             }
         }
         for (c, m) in moves.iter_mut().enumerate() {
@@ -443,8 +444,8 @@ impl DiscRigid {
         if let Some(bm) = &barycenters {
             let turn = bm.alpha.iter().sum::<f64>() / bm.alpha.len().max(1) as f64;
             let mut sum = vec![(0.0f64, 0usize); count];
-            for (e, &al) in self.terms.iter().zip(&self.alpha) {
-                let c = comp[e.vi as usize] as usize;
+            for (&(vi, _), &al) in self.ends.iter().zip(&self.alpha) {
+                let c = comp[vi as usize] as usize;
                 sum[c].0 += al;
                 sum[c].1 += 1;
             }
@@ -467,8 +468,8 @@ impl DiscRigid {
                     }
                 })
                 .collect();
-            for (e, al) in self.terms.iter().zip(self.alpha.iter_mut()) {
-                *al += shift[comp[e.vi as usize] as usize];
+            for (&(vi, _), al) in self.ends.iter().zip(self.alpha.iter_mut()) {
+                *al += shift[comp[vi as usize] as usize];
             }
             for (v, r) in self.rotation.iter_mut().enumerate() {
                 *r += shift[comp[v] as usize];
@@ -531,28 +532,59 @@ impl DiscRigid {
         out: &mut [Point],
         ws: &mut FrameScratch,
     ) {
-        ws.rotations(t, &self.alpha);
         let rhs = &mut ws.solve.rhs;
-        rhs.fill(0.0);
-        let stride = rhs.len() / 2;
-        let (rx, ry) = rhs.split_at_mut(stride);
-        for ((e, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
-            let f = 1.0 + t * e.s1;
-            let mut l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y) * f;
-            if let Some(a) = adjust {
-                let m = (a[e.vi as usize] + a[e.vj as usize]) * 0.5;
-                l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
+        rhs.fill(Point::ZERO);
+        // Rotations a chunk at a time, each used while it is still in registers and L1.
+        let (mut angle, mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        for (c, (terms, alpha)) in self
+            .terms
+            .chunks(CHUNK)
+            .zip(self.alpha.chunks(CHUNK))
+            .enumerate()
+        {
+            let k = terms.len();
+            for (a, &al) in angle.iter_mut().zip(alpha) {
+                *a = t * al;
             }
-            rx[e.rj as usize] += l.x;
-            ry[e.rj as usize] += l.y;
-            rx[e.ri as usize] -= l.x;
-            ry[e.ri as usize] -= l.y;
+            sin_cos_many(&angle[..k], &mut sin[..k], &mut cos[..k]);
+            let rotated = terms.iter().zip(&sin[..k]).zip(&cos[..k]);
+            match adjust {
+                None => {
+                    // Terms are sorted by their first end point: its row's sum stays in a
+                    // register while the run lasts.
+                    let (mut row, mut sum) = (u32::MAX, Point::ZERO);
+                    for ((e, &sn), &cs) in rotated {
+                        let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y)
+                            * (1.0 + t * e.s1);
+                        rhs[e.rj as usize] += l;
+                        if e.ri != row {
+                            if row != u32::MAX {
+                                rhs[row as usize] -= sum;
+                            }
+                            (row, sum) = (e.ri, Point::ZERO);
+                        }
+                        sum += l;
+                    }
+                    if row != u32::MAX {
+                        rhs[row as usize] -= sum;
+                    }
+                }
+                Some(a) => {
+                    let ends = &self.ends[c * CHUNK..c * CHUNK + k];
+                    for (((e, &sn), &cs), &(vi, vj)) in rotated.zip(ends) {
+                        let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y)
+                            * (1.0 + t * e.s1);
+                        let m = (a[vi as usize] + a[vj as usize]) * 0.5;
+                        let l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
+                        rhs[e.rj as usize] += l;
+                        rhs[e.ri as usize] -= l;
+                    }
+                }
+            }
         }
         for (row, &j) in self.extra.iter().zip(targets) {
             for &(v, c) in &row.coeffs {
-                let r = self.system.rhs_index(v);
-                rx[r] += row.weight * c * j.x;
-                ry[r] += row.weight * c * j.y;
+                rhs[self.system.rhs_index(v)] += j * (row.weight * c);
             }
         }
         lerp_into(

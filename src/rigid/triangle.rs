@@ -138,9 +138,7 @@ impl TriangleRigid {
     pub(crate) fn at(&self, t: f64, out: &mut [Point], ws: &mut FrameScratch) {
         ws.rotations(t, &self.theta);
         let rhs = &mut ws.solve.rhs;
-        rhs.fill(0.0);
-        let stride = rhs.len() / 2;
-        let (rx, ry) = rhs.split_at_mut(stride);
+        rhs.fill(Point::ZERO);
         for ((f, &sn), &cs) in self.terms.iter().zip(&ws.sin).zip(&ws.cos) {
             // M = (1 − t)I + tS, then A(t) = R(tθ) M.
             let (m00, m01, m11) = (1.0 - t + t * f.s[0], t * f.s[1], 1.0 - t + t * f.s[2]);
@@ -150,8 +148,7 @@ impl TriangleRigid {
             let a11 = sn * m01 + cs * m11;
             for (k, g) in f.g.iter().enumerate() {
                 let r = f.rows[k] as usize;
-                rx[r] += a00 * g.x + a01 * g.y;
-                ry[r] += a10 * g.x + a11 * g.y;
+                rhs[r] += Point::new(a00 * g.x + a01 * g.y, a10 * g.x + a11 * g.y);
             }
         }
         lerp_into(
