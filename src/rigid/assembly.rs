@@ -9,10 +9,8 @@
 //! symbolic analysis done once) and solves one frame into a caller's buffer without allocating.
 //!
 //! A frame's cost is dominated by the two triangular solves, which read the factor `L` once
-//! each, so the factor is stored for solving: simplicial (faer would pick supernodal storage for
-//! large systems to speed up the one factorization) with 32-bit indices (a third less memory
-//! traffic than `usize`). Fill-in makes `nnz(L)` grow like `n log n` on planar meshes, which
-//! sets how the time per frame grows with the vertex count.
+//! each, so the factor is stored for solving (`factor.rs`). Fill-in makes `nnz(L)` grow like
+//! `n log n` on planar meshes, which sets how the time per frame grows with the vertex count.
 //!
 //! ## Translation
 //!
@@ -25,16 +23,10 @@
 //! exactly compatible with the source (t = 0) or the target (t = 1), the solve reproduces that
 //! shape up to a translation and the centroid rule removes the translation.
 
+use super::factor::Factor;
 use crate::error::{Error, Result};
 use crate::geometry::Point;
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
-};
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Par, Side};
+use faer::sparse::{SparseColMat, Triplet};
 
 /// Collects the constant matrix of a least-squares vertex energy before it is factored.
 ///
@@ -237,132 +229,6 @@ pub(crate) struct SolveScratch {
     /// from [`FactoredSystem::rhs_index`]), and a last dummy row that pinned vertices write to.
     pub(crate) rhs: Vec<Point>,
     sums: Vec<Point>,
-}
-
-/// The Cholesky factor `L` of the reduced system `P A Pᵀ = L Lᵀ`, kept in the form a frame's
-/// two triangular solves read: compressed columns with 32-bit row indices, the diagonal apart
-/// and inverted. Both coordinates are solved in one pass over `L` (one index and one value read
-/// per nonzero for `x` and `y` together), and the right-hand side is written in the factor's
-/// ordering (`position`), so a frame neither permutes nor divides.
-#[derive(Debug)]
-struct Factor {
-    /// `position[r]`: the row of reduced row `r` in the factor's ordering (`P`).
-    position: Vec<u32>,
-    /// `1 / L[j, j]`.
-    inv_diag: Vec<f64>,
-    /// Start of column `j`'s entries below the diagonal in `rows` and `values`.
-    col_ptr: Vec<u32>,
-    rows: Vec<u32>,
-    values: Vec<f64>,
-}
-
-impl Factor {
-    /// Orders (AMD), analyses and factors the symmetric positive definite `a` (upper triangle
-    /// given) with faer's simplicial `LLᵀ`, then lays the factor out for solving.
-    fn new(a: SparseColMatRef<'_, u32, f64>) -> Result<Self> {
-        let n = a.nrows();
-        // Simplicial, not faer's flop-based choice: the factor is computed once and solved
-        // with every frame, and simplicial solves measured faster (100k-vertex grid:
-        // 14.2 ms against 25.4 ms per frame with the supernodal factor).
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
-            ..Default::default()
-        };
-        let symbolic =
-            factorize_symbolic_cholesky(a.symbolic(), Side::Upper, SymmetricOrdering::Amd, params)
-                .map_err(|e| {
-                    Error::internal(format!("symbolic Cholesky of the rigid system: {e:?}"))
-                })?;
-        let mut values = vec![0.0f64; symbolic.len_val()];
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .map_err(|e| Error::internal(format!("allocating the Cholesky scratch: {e:?}")))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                a,
-                Side::Upper,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|e| {
-                Error::internal(format!("the rigid system is not positive definite: {e:?}"))
-            })?;
-        let SymbolicCholeskyRaw::Simplicial(l) = symbolic.raw() else {
-            return Err(Error::internal(
-                "the rigid system's factor is not simplicial",
-            ));
-        };
-        let position = match symbolic.perm() {
-            Some(p) => p.arrays().1.to_vec(),
-            None => (0..n as u32).collect(),
-        };
-        let (ptr, idx) = (l.col_ptr(), l.row_idx());
-        let mut inv_diag = Vec::with_capacity(n);
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut rows = Vec::with_capacity(idx.len().saturating_sub(n));
-        let mut below = Vec::with_capacity(idx.len().saturating_sub(n));
-        col_ptr.push(0u32);
-        for j in 0..n {
-            let (start, end) = (ptr[j] as usize, ptr[j + 1] as usize);
-            // faer stores each column's diagonal entry first.
-            if start == end || idx[start] as usize != j {
-                return Err(Error::internal("the rigid system's factor has no diagonal"));
-            }
-            inv_diag.push(1.0 / values[start]);
-            rows.extend_from_slice(&idx[start + 1..end]);
-            below.extend_from_slice(&values[start + 1..end]);
-            col_ptr.push(rows.len() as u32);
-        }
-        Ok(Factor {
-            position,
-            inv_diag,
-            col_ptr,
-            rows,
-            values: below,
-        })
-    }
-
-    /// Overwrites `b` (the first `n` rows, in the factor's ordering) with `(L Lᵀ)⁻¹ b`.
-    fn solve_in_place(&self, b: &mut [Point]) {
-        let n = self.inv_diag.len();
-        let b = &mut b[..n];
-        // L y = b, column by column.
-        for j in 0..n {
-            let yj = b[j] * self.inv_diag[j];
-            b[j] = yj;
-            let (s, e) = (self.col_ptr[j] as usize, self.col_ptr[j + 1] as usize);
-            for (&i, &l) in self.rows[s..e].iter().zip(&self.values[s..e]) {
-                b[i as usize] -= yj * l;
-            }
-        }
-        // Lᵀ x = y, from the last column back.
-        for j in (0..n).rev() {
-            let (s, e) = (self.col_ptr[j] as usize, self.col_ptr[j + 1] as usize);
-            // Four partial sums: one running sum would wait on every addition.
-            let (rows, vals) = (&self.rows[s..e], &self.values[s..e]);
-            let mut acc = [Point::ZERO; 4];
-            let mut quads = rows.chunks_exact(4).zip(vals.chunks_exact(4));
-            for (r, v) in &mut quads {
-                for k in 0..4 {
-                    acc[k] += b[r[k] as usize] * v[k];
-                }
-            }
-            let tail = rows.len() - rows.len() % 4;
-            for (&i, &l) in rows[tail..].iter().zip(&vals[tail..]) {
-                acc[0] += b[i as usize] * l;
-            }
-            b[j] = (b[j] - ((acc[0] + acc[1]) + (acc[2] + acc[3]))) * self.inv_diag[j];
-        }
-    }
-
-    /// Nonzeros of `L`, its diagonal included.
-    fn nonzeros(&self) -> usize {
-        self.rows.len() + self.inv_diag.len()
-    }
 }
 
 impl FactoredSystem {

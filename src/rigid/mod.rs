@@ -19,6 +19,7 @@
 mod area;
 mod assembly;
 mod disc;
+mod factor;
 mod linear;
 pub(crate) mod repair;
 mod rotation;
