@@ -111,17 +111,26 @@ impl Compatible {
 }
 
 /// Frames of the disc interpolation of `c` that invert a triangle, after fold repair, at
-/// t = k/64 (k = 1…63): the check that picks the mesh [`build`] returns.
-fn folded_frames(c: &Compatible) -> usize {
+/// t = k/64 (k = 1…63), counted up to `enough` (the count stops there, a few frames at a time,
+/// when more would not change the caller's choice): the check that picks the mesh [`build`]
+/// returns.
+fn folded_frames(c: &Compatible, enough: usize) -> usize {
     let Ok(interp) = c.interpolator(Method::Disc) else {
         return usize::MAX;
     };
     let ts: Vec<f64> = (1..64).map(|k| k as f64 / 64.0).collect();
-    interp
-        .frames(&ts)
-        .iter()
-        .filter(|f| crate::mesh::count_inverted(&c.meshes.triangles, f) > 0)
-        .count()
+    let mut folded = 0;
+    for chunk in ts.chunks(rayon::current_num_threads().max(1) * 2) {
+        folded += interp
+            .frames(chunk)
+            .iter()
+            .filter(|f| crate::mesh::count_inverted(&c.meshes.triangles, f) > 0)
+            .count();
+        if folded >= enough {
+            break;
+        }
+    }
+    folded
 }
 
 /// Relaxes the mesh the harmonic map produced (the target's, or the source's with
@@ -217,13 +226,13 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
     };
     // The harmonic map's own mesh unless its interpolation folds where the relaxed one folds
     // less (both after fold repair).
-    let folds = folded_frames(&plain);
+    let folds = folded_frames(&plain, usize::MAX);
     if folds == 0 {
         return Ok(plain);
     }
     let mut relaxed = plain.clone();
     relax_mapped(&mut relaxed.meshes, opts.from_target);
-    Ok(if folded_frames(&relaxed) < folds {
+    Ok(if folded_frames(&relaxed, folds) < folds {
         relaxed
     } else {
         plain

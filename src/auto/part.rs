@@ -423,6 +423,10 @@ pub(crate) fn build_part(
     })
 }
 
+/// Frames checked for folds at a time ([`moves_without_folding`]): enough to keep the cores
+/// busy, few enough that a failing mesh stops early.
+const FOLD_CHUNK: usize = 4;
+
 /// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/16
 /// (k = 1…15), and with the fold repair of `rigid::repair` when the plain frames fold a few, at
 /// t = k/64 (repaired folds come and go between samples): a mesh whose frames fold even so is
@@ -430,11 +434,17 @@ pub(crate) fn build_part(
 fn moves_without_folding(c: &Compatible) -> Result<bool> {
     let m = &c.meshes;
     let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
+    // The first sample (in the order given) whose frame folds: a few frames at a time, in
+    // parallel, stopping at the first chunk with a fold, so a mesh that fails costs a few
+    // frames, not all of them.
     let folds = |interp: &crate::rigid::Interpolator, ts: &[f64]| -> Option<(f64, usize)> {
-        ts.iter()
-            .zip(interp.frames(ts))
-            .map(|(&t, f)| (t, crate::mesh::count_inverted(&m.triangles, &f)))
-            .find(|&(_, n)| n > 0)
+        ts.chunks(FOLD_CHUNK).find_map(|chunk| {
+            chunk
+                .iter()
+                .zip(interp.frames(chunk))
+                .map(|(&t, f)| (t, crate::mesh::count_inverted(&m.triangles, &f)))
+                .find(|&(_, n)| n > 0)
+        })
     };
     let plain = crate::rigid::Interpolator::new(
         crate::rigid::Method::Disc,
@@ -458,7 +468,9 @@ fn moves_without_folding(c: &Compatible) -> Result<bool> {
             ..Default::default()
         },
     )?;
-    let fine: Vec<f64> = (1..64).map(|i| i as f64 / 64.0).collect();
+    // Nearest the plain fold first: where a repair fails, it fails there.
+    let mut fine: Vec<f64> = (1..64).map(|i| i as f64 / 64.0).collect();
+    fine.sort_by(|a, b| (a - t).abs().total_cmp(&(b - t).abs()).then(a.total_cmp(b)));
     match folds(&repaired, &fine) {
         None => Ok(true),
         Some((t2, left)) => Err(Error::input(

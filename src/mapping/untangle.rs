@@ -23,6 +23,8 @@ use crate::geometry::Point;
 #[derive(Debug, Clone)]
 pub(crate) struct Untangler {
     stars: Vec<Vec<[u32; 2]>>,
+    /// Per vertex, the indices of its triangles (same order as `stars`).
+    incident: Vec<Vec<u32>>,
     rings: Vec<Vec<u32>>,
     fixed: Vec<bool>,
 }
@@ -36,21 +38,24 @@ impl Untangler {
     pub(crate) fn new(triangles: &[[u32; 3]], fixed: &[bool]) -> Self {
         let n = fixed.len();
         let mut stars = vec![Vec::new(); n];
-        for t in triangles {
+        let mut incident = vec![Vec::new(); n];
+        for (f, t) in triangles.iter().enumerate() {
             for k in 0..3 {
                 stars[t[k] as usize].push([t[(k + 1) % 3], t[(k + 2) % 3]]);
+                incident[t[k] as usize].push(f as u32);
             }
         }
         let rings = crate::mesh::one_rings(triangles, n);
         Untangler {
             stars,
+            incident,
             rings,
             fixed: fixed.to_vec(),
         }
     }
 
     /// Moves free vertices of the triangles for which `bad` holds until none does or the sweeps
-    /// run out; returns whether none does.
+    /// run out; returns whether none does. `triangles` are those the untangler was made for.
     pub(crate) fn untangle(
         &self,
         triangles: &[[u32; 3]],
@@ -59,12 +64,18 @@ impl Untangler {
     ) -> bool {
         let mut active: Vec<u32> = Vec::new();
         let mut stuck: Vec<u32> = Vec::new();
+        // The triangles for which `bad` holds, kept up to date: only a moved vertex's
+        // triangles can change.
+        let mut tangled: Vec<u32> = (0..triangles.len() as u32)
+            .filter(|&f| bad(&triangles[f as usize], points))
+            .collect();
         for _ in 0..SWEEPS {
             active.clear();
-            for t in triangles.iter().filter(|t| bad(t, points)) {
+            for &f in &tangled {
+                let t = &triangles[f as usize];
                 active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
             }
-            if active.is_empty() && triangles.iter().all(|t| !bad(t, points)) {
+            if active.is_empty() && tangled.is_empty() {
                 return true;
             }
             // Vertices that could not be freed last sweep bring their free neighbours.
@@ -92,8 +103,14 @@ impl Untangler {
                     None => stuck.push(v),
                 }
             }
+            for &v in &active {
+                tangled.extend_from_slice(&self.incident[v as usize]);
+            }
+            tangled.sort_unstable();
+            tangled.dedup();
+            tangled.retain(|&f| bad(&triangles[f as usize], points));
         }
-        triangles.iter().all(|t| !bad(t, points))
+        tangled.is_empty()
     }
 
     /// Improves the shapes of the triangles that the mapping distorted most: every free vertex
@@ -105,13 +122,7 @@ impl Untangler {
     /// of its star was and none flips; an exact similarity of `rest` is left untouched.
     pub(crate) fn improve(&self, triangles: &[[u32; 3]], rest: &[Point], points: &mut [Point]) {
         let rest_quality: Vec<f64> = triangles.iter().map(|t| quality(t, rest)).collect();
-        // Per vertex, the indices of its triangles (same order as `stars`).
-        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); self.fixed.len()];
-        for (f, t) in triangles.iter().enumerate() {
-            for &v in t {
-                incident[v as usize].push(f as u32);
-            }
-        }
+        let incident = &self.incident;
         let star_min = |v: usize, pts: &[Point]| -> f64 {
             incident[v]
                 .iter()

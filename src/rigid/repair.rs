@@ -178,7 +178,8 @@ impl FoldRepair {
                     .iter()
                     .all(|&g| positive(out, self.triangles[g as usize]))
             });
-            self.refresh(out, bad);
+            let moved: Vec<u32> = movable.iter().map(|&v| v as u32).collect();
+            self.refresh(out, bad, &moved);
             if patch_ok && bad.is_empty() {
                 return;
             }
@@ -186,19 +187,22 @@ impl FoldRepair {
                 for (&v, &p) in movable.iter().zip(&saved) {
                     out[v] = p;
                 }
-                self.refresh(out, bad);
+                self.refresh(out, bad, &moved);
             }
         }
     }
 
-    /// Sets `bad` to the inverted triangles of `out`: a move straightens its own star, but the
-    /// fallback candidates and a patch can invert a triangle that was not in the list.
-    fn refresh(&self, out: &[Point], bad: &mut Vec<u32>) {
-        bad.clear();
-        bad.extend(
-            (0..self.triangles.len() as u32)
-                .filter(|&f| !positive(out, self.triangles[f as usize])),
-        );
+    /// Updates `bad`, the inverted triangles of `out` before the vertices `moved` moved, to
+    /// those of `out` now: a move straightens its own star, but the fallback candidates and a
+    /// patch can invert a triangle that was not in the list. Only triangles with a moved corner
+    /// can have changed, so only they and the old list are checked, not the whole mesh.
+    fn refresh(&self, out: &[Point], bad: &mut Vec<u32>, moved: &[u32]) {
+        for &v in moved {
+            bad.extend_from_slice(&self.star[v as usize]);
+        }
+        bad.sort_unstable();
+        bad.dedup();
+        bad.retain(|&f| !positive(out, self.triangles[f as usize]));
     }
 
     /// Up to [`PASSES`] passes over the corners of the triangles in `bad` (which it updates),
@@ -228,7 +232,7 @@ impl FoldRepair {
                     Relax::Kept => {}
                 }
             }
-            self.refresh(out, bad);
+            self.refresh(out, bad, &todo);
             // The neighbours of the corners that could not be placed, and of the corners
             // that may not move, make room in the next pass.
             let mut grow: Vec<u32> = stuck
