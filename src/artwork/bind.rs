@@ -178,9 +178,25 @@ impl<'a> PointLocator<'a> {
                     }
                 }
             }
-            // Cells beyond ring r are at least r cells from p's cell.
+            // Stop when every cell beyond ring r is farther than the best triangle: the
+            // unsearched cells lie beyond the sides of the ring's rectangle that are not the
+            // grid's own edges (a point outside the grid is far from all of them at once).
             if let Some((d, _)) = best {
-                if d < r as f64 * self.cell {
+                let (o, c) = (self.origin, self.cell);
+                let mut beyond = f64::INFINITY;
+                if x0 > 0 {
+                    beyond = beyond.min(p.x - (o.x + x0 as f64 * c));
+                }
+                if x1 + 1 < self.nx {
+                    beyond = beyond.min(o.x + (x1 + 1) as f64 * c - p.x);
+                }
+                if y0 > 0 {
+                    beyond = beyond.min(p.y - (o.y + y0 as f64 * c));
+                }
+                if y1 + 1 < self.ny {
+                    beyond = beyond.min(o.y + (y1 + 1) as f64 * c - p.y);
+                }
+                if d < beyond.max(0.0) || beyond == f64::INFINITY {
                     break;
                 }
             }
