@@ -481,3 +481,32 @@ fn a_malformed_manifest_is_one_error_naming_the_file_and_line_before_any_work() 
         stderr(&o)
     );
 }
+
+#[test]
+fn inverted_triangles_are_counted_over_the_frames() {
+    let root = tempfile::tempdir().unwrap();
+    let (s, t) = (
+        fixture("leaf-to-butterfly/source.svg"),
+        fixture("leaf-to-butterfly/target.svg"),
+    );
+    std::fs::write(
+        root.path().join("pairs.csv"),
+        format!(
+            "source,target,output\n{},{},leaf.svg\n",
+            s.display(),
+            t.display()
+        ),
+    )
+    .unwrap();
+    let mut counts = Vec::new();
+    for method in ["disc", "linear"] {
+        let o = batch(root.path(), &["pairs.csv", "--force", "--method", method]);
+        assert!(o.status.success(), "{method}: {}", stderr(&o));
+        let rows = read_rows(&root.path().join("batch-report.jsonl"));
+        assert_eq!(rows[0]["frames_checked"], 4);
+        counts.push(rows[0]["inverted_triangles"].as_u64().unwrap());
+    }
+    // The rigid interpolation inverts nothing here; the linear baseline does (paper §4.1).
+    assert_eq!(counts[0], 0);
+    assert!(counts[1] > 0, "{counts:?}");
+}
