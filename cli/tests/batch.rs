@@ -353,10 +353,16 @@ fn shards_partition_the_batch_and_write_their_own_reports() {
         let o = batch(root.path(), &["pairs.csv", "--shard", &shard]);
         assert!(o.status.success(), "{shard}: {}", stderr(&o));
         let report = root.path().join(format!("batch-report.{i}-of-3.jsonl"));
-        let part: Vec<String> = read_rows(&report)
+        let rows = read_rows(&report);
+        let part: Vec<String> = rows
             .iter()
             .map(|r| r["output"].as_str().unwrap().to_string())
             .collect();
+        // Each row knows its place in the whole batch, to merge the shards' reports in order.
+        for (r, out) in rows.iter().zip(&part) {
+            let k = all.iter().position(|o| o == out).unwrap();
+            assert_eq!(r["index"].as_u64(), Some(k as u64));
+        }
         // Pair k (from 0) is in shard k mod 3 + 1.
         let expected: Vec<String> = all.iter().skip(i - 1).step_by(3).cloned().collect();
         assert_eq!(part, expected, "{shard}");

@@ -155,9 +155,10 @@ pub(crate) fn run(a: &BatchArgs, progress: &Progress) -> Result<()> {
     let rows: Vec<Row> = pool.install(|| {
         selected
             .par_iter()
-            .map(|(_, pair)| {
+            .map(|&(index, pair)| {
                 let prev = previous.get(&shown(&pair.output));
-                let row = run_pair(pair, &template, &options, prev, a.force);
+                let mut row = run_pair(pair, &template, &options, prev, a.force);
+                row.index = index;
                 // A journal line lost (a full disk) only costs a resumed run this pair.
                 let _ = journal.append(&row);
                 tick();

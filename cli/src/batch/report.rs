@@ -49,6 +49,9 @@ pub(crate) struct Timings {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default)]
 pub(crate) struct Row {
+    /// The pair's position in the whole batch (from 0, in manifest order, shards counted
+    /// together): sorting merged shard reports by it gives the manifest's order.
+    pub(crate) index: usize,
     /// The source drawing (resolved against the manifest's folder).
     pub(crate) source: String,
     /// The target drawing.
