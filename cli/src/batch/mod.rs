@@ -138,6 +138,10 @@ pub(crate) fn run(a: &BatchArgs, progress: &Progress) -> Result<()> {
         "{:?} {:?} {:?} {:?}",
         a.reading, a.method, a.timing, a.look
     ));
+    if let Some(dir) = report_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
+    }
     let previous = report::previous(&report_path);
     let template = template(a);
     let journal = Journal::open(&report_path)?;
