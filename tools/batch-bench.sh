@@ -15,7 +15,7 @@ for ext in svg gif; do
                  output: ("out-" + $e + "/" + .id + "." + $e)}' \
     "$REPO/fixtures/corpus/pairs.json" > "corpus-$ext.jsonl"
 done
-echo "format jobs run wall_s pairs_per_s peak_rss_mib load_1min summary"
+echo "format jobs run wall_s pairs_per_s peak_rss_mib cpu load_1min summary"
 for ext in svg gif; do
   for jobs in 2 1; do
     run=1
@@ -26,13 +26,14 @@ for ext in svg gif; do
       wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' time.txt |
         awk -F: '{ s = 0; for (i = 1; i <= NF; i++) s = s * 60 + $i; print s }')
       rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' time.txt)
+      cpu=$(sed -n 's/.*Percent of CPU this job got: //p' time.txt)
       n=$(wc -l < "report-$ext-$jobs.jsonl")
       summary=$(jq -s -c '{ok: map(select(.status == "ok")) | length,
         failed: map(select(.status == "failed")) | length,
         crisp: map(select(.crisp == true)) | length,
         inverted: (map(.inverted_triangles // 0) | add)}' "report-$ext-$jobs.jsonl")
       echo "$ext $jobs $run $wall $(echo "$n $wall" | awk '{ printf "%.1f", $1 / $2 }') \
-$(echo "$rss" | awk '{ printf "%.1f", $1 / 1024 }') $load $summary"
+$(echo "$rss" | awk '{ printf "%.1f", $1 / 1024 }') $cpu $load $summary"
       run=$((run + 1))
     done
   done

@@ -233,10 +233,10 @@ fn a_failing_pair_is_a_failed_row_and_the_others_still_run() {
          in/heart.svg,in/star.svg,out/1.svg\n\
          in/bad.svg,in/star.svg,out/2.svg\n\
          in/circle.svg,in/square.svg,out/3.svg\n\
-         in/heart.svg,in/star.svg,in/heart.svg\n",
+         in/u.svg,in/s.svg,in/u.svg\n",
     )
     .unwrap();
-    let heart = std::fs::read(root.path().join("in/heart.svg")).unwrap();
+    let u = std::fs::read(root.path().join("in/u.svg")).unwrap();
     let o = batch(root.path(), &["pairs.csv"]);
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);
@@ -254,10 +254,7 @@ fn a_failing_pair_is_a_failed_row_and_the_others_still_run() {
     // No pair overwrites its input.
     let e = rows[3]["error"].as_str().unwrap();
     assert!(e.contains("refusing to overwrite an input file"), "{e}");
-    assert_eq!(
-        std::fs::read(root.path().join("in/heart.svg")).unwrap(),
-        heart
-    );
+    assert_eq!(std::fs::read(root.path().join("in/u.svg")).unwrap(), u);
     // No temporary left behind.
     let names: Vec<String> = std::fs::read_dir(root.path().join("out"))
         .unwrap()
@@ -479,6 +476,18 @@ fn a_malformed_manifest_is_one_error_naming_the_file_and_line_before_any_work() 
         assert!(!root.path().join("out").exists(), "no pair ran: {expected}");
         assert!(!root.path().join("batch-report.jsonl").exists());
     }
+    // An output that another pair reads: what it reads would depend on which runs first.
+    std::fs::write(
+        root.path().join("pairs.csv"),
+        "source,target,output\nin/heart.svg,in/star.svg,in/circle.svg\nin/circle.svg,in/square.svg,out/b.svg\n",
+    )
+    .unwrap();
+    let o = batch(root.path(), &["pairs.csv"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o).trim_end(),
+        "error: pairs.csv:2: output 'in/circle.svg' is an input of the pair at pairs.csv:3"
+    );
     let o = batch(root.path(), &["missing.csv"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(

@@ -252,13 +252,37 @@ fn check_output(output: &Path, origin: &str) -> Result<()> {
 }
 
 /// Refuses two pairs that write the same output (they would overwrite each other, and the
-/// resume rule keys on outputs).
+/// resume rule keys on outputs), and an output that another pair reads (pairs run in
+/// parallel: what that pair read would depend on the timing). A pair's output that is its own
+/// input is refused when the pair runs, like `crmorph morph` refuses it.
 fn refuse_shared_outputs(pairs: &[Pair]) -> Result<()> {
     let mut seen: HashMap<&Path, &str> = HashMap::new();
     for p in pairs {
         if let Some(first) = seen.insert(&p.output, &p.origin) {
             bail!(
                 "{}: output '{}' is also written by {first}",
+                p.origin,
+                p.output.display()
+            );
+        }
+    }
+    // Inputs exist: compare canonical paths, and outputs that exist already likewise.
+    let canonical = |p: &Path| p.canonicalize().unwrap_or_else(|_| p.to_path_buf());
+    let mut inputs: HashMap<PathBuf, Vec<&str>> = HashMap::new();
+    for p in pairs {
+        for i in [&p.source, &p.target] {
+            inputs.entry(canonical(i)).or_default().push(&p.origin);
+        }
+    }
+    for p in pairs {
+        let reader = [canonical(&p.output), p.output.clone()]
+            .iter()
+            .filter_map(|o| inputs.get(o))
+            .flatten()
+            .find(|&&o| o != p.origin.as_str());
+        if let Some(reader) = reader {
+            bail!(
+                "{}: output '{}' is an input of the pair at {reader}",
                 p.origin,
                 p.output.display()
             );
@@ -480,6 +504,19 @@ mod tests {
             e.contains("also written by") && e.contains("m.csv:2"),
             "{e}"
         );
+        std::fs::write(
+            &m,
+            "source,target,output\na.svg,b.svg,o.svg\nb.svg,o.svg,p.svg\n",
+        )
+        .unwrap();
+        std::fs::write(d.join("o.svg"), "<svg/>").unwrap();
+        let e = format!("{:#}", read(&m).unwrap_err());
+        assert!(
+            e.contains("m.csv:2: output") && e.contains("input of the pair at"),
+            "{e}"
+        );
+        assert!(e.ends_with("m.csv:3"), "{e}");
+        std::fs::remove_file(d.join("o.svg")).unwrap();
         std::fs::write(&m, "source,target,output\na.svg,c.svg,o.svg\n").unwrap();
         let e = format!("{:#}", read(&m).unwrap_err());
         assert!(
