@@ -59,6 +59,15 @@ pub(crate) struct Inputs {
     /// Output file; its extension picks the format.
     #[arg(short, long)]
     pub(crate) output: PathBuf,
+    #[command(flatten)]
+    pub(crate) reading: Reading,
+}
+
+/// How both drawings are read and triangulated: the control conventions, the vertex density,
+/// which side is triangulated, and the input policy. Apart from [`Inputs`] so that `crmorph
+/// batch`, which has no SRC, TGT and `-o` of its own, takes the same options for every pair.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct Reading {
     /// Id of the boundary element.
     #[arg(long, default_value = "boundary")]
     pub(crate) boundary_id: String,
@@ -378,6 +387,7 @@ fn output_format(out: &Path, allowed: &[Format], command: &str) -> Result<Format
 }
 
 fn read_options(inputs: &Inputs) -> ReadOptions {
+    let inputs = &inputs.reading;
     let mut ids = ControlIds::default();
     ids.boundary = inputs.boundary_id.clone();
     ids.feature_prefix = inputs.feature_prefix.clone();
@@ -397,8 +407,36 @@ fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
 }
 
 /// The two drawings (with automatic control geometry when unmarked), their compatible
-/// triangulation, and in automatic mode the artwork paths that morph as one shape.
-type Prepared = (Drawing, Drawing, Compatible, Vec<MorphingPath>);
+/// triangulation, and in automatic mode the artwork paths that morph as one shape and the
+/// shape counts of its report.
+type Prepared = (
+    Drawing,
+    Drawing,
+    Compatible,
+    Vec<MorphingPath>,
+    Option<AutoCounts>,
+);
+
+/// What automatic mode paired, in counts (from [`crmorph::auto::AutoReport`]), for `crmorph
+/// batch`'s report: whether a morph is crisp (shapes move) or cross-fades.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct AutoCounts {
+    /// Pairs of shapes that morph into each other.
+    pub(crate) shapes: usize,
+    /// Shapes without a partner (they grow or shrink, they do not cross-fade).
+    pub(crate) lone: usize,
+    /// Paths with a paired shape that still cross-fade.
+    pub(crate) blended: usize,
+}
+
+/// How the artwork of a morph moves, for `crmorph batch`'s report.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Shapes {
+    /// Automatic mode's counts; `None` for marked-up drawings (a boundary or feature curves).
+    pub(crate) auto: Option<AutoCounts>,
+    /// Artwork paths that morph as one path (unblended) in the frames.
+    pub(crate) morphing: usize,
+}
 
 fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
     refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
@@ -414,18 +452,23 @@ fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
         }
     }
     let mut opts = MorphOptions::default();
-    opts.from_target = inputs.from == From::Target;
-    opts.density = inputs.density;
+    opts.from_target = inputs.reading.from == From::Target;
+    opts.density = inputs.reading.density;
     progress.stage("compatible triangulation");
     if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
         // Plain SVGs: control geometry from the artwork (automatic mode).
         let (ss, ts) = (scene(&s)?, scene(&t)?);
         let (c, report, s, t) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &opts)?;
         progress.note(&format!("{}: {report}", inputs.source.display()));
-        return Ok((s, t, c, report.morphing));
+        let counts = AutoCounts {
+            shapes: report.shapes.len(),
+            lone: report.lone.len(),
+            blended: report.blended,
+        };
+        return Ok((s, t, c, report.morphing, Some(counts)));
     }
     let c = build(&s, &t, &opts)?;
-    Ok((s, t, c, Vec::new()))
+    Ok((s, t, c, Vec::new(), None))
 }
 
 /// A drawing's artwork, its images read under the drawing's input policy.
@@ -453,7 +496,7 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         &[Format::Svg, Format::Png, Format::Json],
         "inspect",
     )?;
-    let (s, _, c, _) = compatible(&a.inputs, progress)?;
+    let (s, _, c, _, _) = compatible(&a.inputs, progress)?;
     // The reference skeleton, if the source has one, and where the target mesh carries it.
     let skeleton = if s.controls.skeleton.is_empty() {
         None
@@ -477,7 +520,7 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         Format::Json => crmorph::json::meshes_json(&c.meshes).into_bytes(),
         Format::Png => {
             progress.stage("rendering");
-            let max_pixels = a.inputs.safety.policy().limits.pixels;
+            let max_pixels = a.inputs.reading.safety.policy().limits.pixels;
             let file = a.inputs.source.display().to_string();
             crmorph::render::svg_png(&picture(), a.width, &file, max_pixels)?
         }
@@ -507,8 +550,8 @@ fn motion(
             "{}: has no skeleton (polylines with id '{}' or '{}-NAME'); skeleton control needs one \
              on the source drawing",
             inputs.source.display(),
-            inputs.skeleton_id,
-            inputs.skeleton_id
+            inputs.reading.skeleton_id,
+            inputs.reading.skeleton_id
         );
     }
     let skeleton =
@@ -531,6 +574,7 @@ fn motion(
 /// Reads both drawings' artwork and binds it to the meshes with the motion of `method` and
 /// `steering`. With `raster`, the frame size (the drawing's own or `--size`, and again after
 /// `--view fit` grew it) is checked against `--max-pixels` before any work at that size.
+/// Returns the morph and how its artwork moves.
 fn build_morph(
     inputs: &Inputs,
     method: MethodArg,
@@ -539,8 +583,8 @@ fn build_morph(
     always_skeleton: bool,
     raster: bool,
     progress: &Progress,
-) -> Result<Morph> {
-    let (s, t, c, paths) = compatible(inputs, progress)?;
+) -> Result<(Morph, Shapes)> {
+    let (s, t, c, paths, auto) = compatible(inputs, progress)?;
     progress.stage("interpolation");
     let motion = motion(inputs, method, steering, always_skeleton, &s, &c)?;
     progress.stage("binding the artwork");
@@ -550,7 +594,7 @@ fn build_morph(
         opts.size = (w, h);
     }
     opts.background = look.background;
-    opts.max_pixels = inputs.safety.policy().limits.pixels;
+    opts.max_pixels = inputs.reading.safety.policy().limits.pixels;
     let source_file = inputs.source.display().to_string();
     if raster {
         opts.check_pixels(&source_file)?;
@@ -564,6 +608,10 @@ fn build_morph(
         crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c)
     } else {
         paths
+    };
+    let shapes = Shapes {
+        auto,
+        morphing: paths.len(),
     };
     let mut morph = Morph::with_morphing_paths(c.meshes, motion, &ss, &ts, opts, paths)?;
     let drawn = match look.view {
@@ -580,7 +628,7 @@ fn build_morph(
         fitted.check_pixels(&source_file)?;
     }
     morph.set_frame_options(fitted);
-    Ok(morph)
+    Ok((morph, shapes))
 }
 
 /// Runs `frame`.
@@ -591,7 +639,7 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         "frame",
     )?;
     let bytes = if fmt == Format::Json {
-        let (s, _, c, _) = compatible(&a.inputs, progress)?;
+        let (s, _, c, _, _) = compatible(&a.inputs, progress)?;
         progress.stage("interpolation");
         // With a skeleton in the source, the frame carries it (always through skeleton
         // control, which without poses is the plain disc interpolation).
@@ -613,7 +661,7 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         .into_bytes()
     } else {
         let raster = fmt == Format::Png;
-        let morph = build_morph(
+        let (morph, _) = build_morph(
             &a.inputs,
             a.method,
             &a.look,
@@ -633,6 +681,28 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
 
 /// Runs `morph`.
 pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
+    morph_pair(a, progress).map(|_| ())
+}
+
+/// A finished `morph` of one pair, for `crmorph batch`'s report: the morph itself (to measure
+/// its frames), how its artwork moves, and where the time went.
+pub(crate) struct Morphed {
+    /// The morph whose output was written.
+    pub(crate) morph: Morph,
+    /// The frames it was written with.
+    pub(crate) timeline: Timeline,
+    /// How its artwork moves.
+    pub(crate) shapes: Shapes,
+    /// Reading, triangulating, interpolating and binding the artwork.
+    pub(crate) setup: std::time::Duration,
+    /// Rendering the frames and writing the output(s).
+    pub(crate) render: std::time::Duration,
+}
+
+/// Morphs one pair as `crmorph morph` does (`a` holds the pair and every option) and writes
+/// its output: the one path `morph` and `batch` share.
+pub(crate) fn morph_pair(a: &MorphArgs, progress: &Progress) -> Result<Morphed> {
+    let started = std::time::Instant::now();
     let fmt = output_format(
         &a.inputs.output,
         &[
@@ -661,7 +731,7 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
     }
     let raster = matches!(fmt, Format::Gif | Format::Png)
         || (a.frames_dir.is_some() && a.frame_format == FrameFormat::Png);
-    let mut morph = build_morph(
+    let (mut morph, shapes) = build_morph(
         &a.inputs,
         a.method,
         &a.look,
@@ -670,6 +740,7 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
         raster,
         progress,
     )?;
+    let setup = started.elapsed();
     progress.stage("rendering");
     // Frames done / total, over both outputs (the frames folder is made first).
     let main = match fmt {
@@ -739,10 +810,16 @@ pub(crate) fn morph(a: &MorphArgs, progress: &Progress) -> Result<()> {
         }
     }
     progress.frames_done();
-    match staged {
-        Some(s) => s.commit(),
-        None => Ok(()),
+    if let Some(s) = staged {
+        s.commit()?;
     }
+    Ok(Morphed {
+        morph,
+        timeline,
+        shapes,
+        setup,
+        render: started.elapsed() - setup,
+    })
 }
 
 fn file_name(p: &Path) -> String {
@@ -761,7 +838,7 @@ pub(crate) fn skeleton(a: &SkeletonArgs, progress: &Progress) -> Result<()> {
         ))
         .into());
     }
-    let morph = build_morph(
+    let (morph, _) = build_morph(
         &a.inputs,
         MethodArg::Disc,
         &a.look,

@@ -3,6 +3,7 @@
 //! Exit status: 0 on success, 1 on bad input (one line `error: …` naming the file, the element id
 //! and the problem), 2 on bad usage. Outputs are written atomically.
 
+mod batch;
 mod commands;
 mod demo;
 mod docs;
@@ -65,6 +66,9 @@ enum Command {
     Inspect(InspectArgs),
     /// The derived skeleton at time T drawn over that frame (.svg), to edit into a --pose file.
     Skeleton(SkeletonArgs),
+    /// Morph many pairs in parallel, from a manifest (CSV or JSON lines) or two folders, with
+    /// a JSON-lines report; pairs whose output is up to date are skipped (docs/batch.md).
+    Batch(batch::BatchArgs),
     /// Print a shell completion script to stdout, e.g. `crmorph completions bash >
     /// ~/.local/share/bash-completion/completions/crmorph`.
     Completions(CompletionsArgs),
@@ -83,6 +87,7 @@ fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Frame(a)) => commands::frame(a, &progress),
         Some(Command::Inspect(a)) => commands::inspect(a, &progress),
         Some(Command::Skeleton(a)) => commands::skeleton(a, &progress),
+        Some(Command::Batch(a)) => batch::run(a, &progress),
         Some(Command::Completions(a)) => docs::completions(a, &mut std::io::stdout().lock()),
         Some(Command::Man(a)) => docs::man(a, &mut std::io::stdout().lock()),
     };

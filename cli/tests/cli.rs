@@ -669,7 +669,14 @@ fn completions_and_manual_pages_are_printed() {
         let o = bin().args(["completions", shell]).output().unwrap();
         assert!(o.status.success(), "{shell}: {}", stderr(&o));
         let text = String::from_utf8_lossy(&o.stdout);
-        for c in ["morph", "frame", "inspect", "skeleton", "completions"] {
+        for c in [
+            "morph",
+            "frame",
+            "inspect",
+            "skeleton",
+            "batch",
+            "completions",
+        ] {
             assert!(text.contains(c), "{shell}: no {c}");
         }
     }
@@ -684,6 +691,7 @@ fn completions_and_manual_pages_are_printed() {
         "frame",
         "inspect",
         "skeleton",
+        "batch",
         "completions",
         "man",
     ] {
