@@ -322,12 +322,20 @@ pub(crate) struct BoundPathItem {
     pub(crate) dashes: Option<BoundPath>,
 }
 
+/// An image's texture grid bound to the mesh: `(columns + 1) × (rows + 1)` grid vertices.
+#[derive(Debug, Clone)]
+pub(crate) struct BoundImage {
+    pub(crate) columns: u32,
+    pub(crate) rows: u32,
+    pub(crate) locations: Vec<Location>,
+}
+
 /// What each path or image of the scene (depth first, paint order) is bound to.
 #[derive(Debug, Clone)]
 pub(crate) enum BoundItem {
     Path(BoundPathItem),
-    /// An image, anchored at its centre.
-    Image(Location),
+    /// An image: its texture grid's vertices, row-major (`super::texture`).
+    Image(BoundImage),
     /// A group's clip path, one bound path per shape (comes before the group's children).
     Clip(Vec<BoundPath>),
 }
@@ -415,7 +423,7 @@ impl Binding {
                 BoundItem::Path(p) => {
                     p.outline.locations.len() + p.dashes.as_ref().map_or(0, |d| d.locations.len())
                 }
-                BoundItem::Image(_) => 1,
+                BoundItem::Image(b) => b.locations.len(),
                 BoundItem::Clip(c) => c.iter().map(|p| p.locations.len()).sum(),
             })
             .sum()
@@ -448,9 +456,15 @@ fn bind_items(items: &[Item], locator: &Locator, tol: Resolution, out: &mut Vec<
                 }));
             }
             Item::Image(img) => {
-                let c = img.transform * kurbo::Point::new(img.width / 2.0, img.height / 2.0);
-                let c = Point::new(c.x, c.y);
-                out.push(BoundItem::Image(locator.for_item(&[c]).locate(c)));
+                // Cells as long as the mesh's mean edge (twice `max_segment`).
+                let (columns, rows) = super::ImageGrid::size_for(img, 2.0 * tol.max_segment);
+                let points = super::ImageGrid::rest_points(img, columns, rows);
+                let located = locator.for_item(&points);
+                out.push(BoundItem::Image(BoundImage {
+                    columns,
+                    rows,
+                    locations: points.iter().map(|&p| located.locate(p)).collect(),
+                }));
             }
         }
     }

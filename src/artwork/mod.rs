@@ -11,7 +11,7 @@
 //!
 //! A [`Scene`] keeps what the renderers need and nothing else: paths with their fill and stroke,
 //! groups with their opacity (so group opacity composites as in the input), and embedded raster
-//! images with their placement. Geometry lives in the *user space of the root element* (viewBox
+//! images with their placement (warped piecewise-affinely on a texture grid, `texture`). Geometry lives in the *user space of the root element* (viewBox
 //! coordinates), the space the meshes live in. A [`Binding`] expresses every artwork point in
 //! barycentric coordinates of the mesh once; [`Binding::warp`] re-places the artwork in the mesh of
 //! any frame without re-locating anything.
@@ -29,12 +29,14 @@ mod bind;
 mod pair;
 mod reach;
 mod scene;
+mod texture;
 mod warp;
 
 pub use bind::{Binding, Location, PointLocator};
 pub use pair::ArtworkPair;
 pub use reach::{within_reach, FarPath, REACH};
 pub use scene::flatten_tolerance;
+pub use texture::{DecodedImage, ImageGrid, ImagePiece};
 
 #[cfg(test)]
 pub(crate) use bind::tests as bind_tests;
@@ -284,6 +286,12 @@ pub struct ImageItem {
     pub transform: Affine,
     /// Whether to sample with nearest neighbour (`image-rendering: pixelated` and the like).
     pub pixelated: bool,
+    /// Once bound to a mesh and warped: where the image's texture grid lies in the frame, so
+    /// that the image is drawn piecewise-affinely, cell triangle by cell triangle (the paper's
+    /// textures, §3 Fig. 2). `None` for the image as read, drawn with `transform` alone.
+    pub grid: Option<ImageGrid>,
+    /// The decoded pixels, decoded once on first use and shared by every warped copy.
+    pub pixels: DecodedImage,
 }
 
 /// A bounding box `(min, max)`, or `None` for nothing.

@@ -618,6 +618,8 @@ impl Reader<'_> {
                     | usvg::ImageRendering::CrispEdges
                     | usvg::ImageRendering::Pixelated
             ),
+            grid: None,
+            pixels: Default::default(),
         })
     }
 }

@@ -7,10 +7,11 @@
 //!   (the local area scale of the triangle under each point);
 //! - gradient geometry follows the full affine map of the triangle under the path's bounding-box
 //!   centre;
-//! - images follow the affine map of the triangle under their centre.
+//! - images are placed by their texture grid (`super::texture`): each grid vertex moves like a
+//!   point, and each cell triangle carries its part of the image affinely.
 
 use super::bind::{BoundItem, BoundPath, BoundPathItem};
-use super::{Binding, Clip, ClipShape, Gradient, Group, Item, Paint, PathItem, Scene};
+use super::{Binding, Clip, ClipShape, Gradient, Group, ImageGrid, Item, Paint, PathItem, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 use kurbo::{Affine, BezPath};
@@ -56,10 +57,39 @@ impl Binding {
                 .zip(&self.rest)
                 .all(|(a, b)| a.distance(*b) <= eps);
             if at_rest {
-                return Ok(self.scene.clone());
+                return Ok(self.scene_with_rest_grids());
             }
         }
         self.warp(frame_vertices)
+    }
+
+    /// The input scene with every image's texture grid at rest, so that it has the structure
+    /// of a warped frame (an animation's first keyframe) while its paths stay exact.
+    fn scene_with_rest_grids(&self) -> Scene {
+        let mut scene = self.scene.clone();
+        let mut grids = self.items.iter().filter_map(|b| match b {
+            BoundItem::Image(b) => Some((b.columns, b.rows)),
+            _ => None,
+        });
+        fn walk(g: &mut Group, grids: &mut dyn Iterator<Item = (u32, u32)>) {
+            for c in &mut g.children {
+                match c {
+                    Item::Group(sub) => walk(sub, grids),
+                    Item::Image(img) => {
+                        if let Some((columns, rows)) = grids.next() {
+                            img.grid = Some(ImageGrid {
+                                columns,
+                                rows,
+                                points: ImageGrid::rest_points(img, columns, rows),
+                            });
+                        }
+                    }
+                    Item::Path(_) => {}
+                }
+            }
+        }
+        walk(&mut scene.root, &mut grids);
+        scene
     }
 
     fn scene_header(&self) -> Scene {
@@ -113,10 +143,18 @@ impl Binding {
                     *next += 1;
                     children.extend(warp_path(p, b, maps, frame).into_iter().map(Item::Path));
                 }
-                (Item::Image(img), Some(BoundItem::Image(l))) => {
+                (Item::Image(img), Some(BoundItem::Image(b))) => {
                     *next += 1;
                     let mut img = img.clone();
-                    img.transform = maps.affine(l.triangle) * img.transform;
+                    img.grid = Some(ImageGrid {
+                        columns: b.columns,
+                        rows: b.rows,
+                        points: b
+                            .locations
+                            .iter()
+                            .map(|l| l.place(frame.triangles, frame.vertices))
+                            .collect(),
+                    });
                     children.push(Item::Image(img));
                 }
                 _ => return Err(out_of_step()),

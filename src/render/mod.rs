@@ -13,6 +13,7 @@ mod fit;
 mod font;
 mod raster;
 pub mod svg_frame;
+mod texture;
 mod tree;
 pub mod view;
 

@@ -8,7 +8,7 @@
 
 use super::svg_frame::{scene_svg, side_svg, Layer};
 use super::FrameOptions;
-use crate::artwork::Scene;
+use crate::artwork::{Clip, Group, Item, Scene};
 use crate::error::{Error, Result};
 use tiny_skia::{Pixmap, PixmapPaint, Transform};
 
@@ -26,9 +26,141 @@ pub fn render_scene(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
 }
 
 /// Renders one warped side of an in-between frame exactly as the SVG frame writes it (outlines
-/// fitted with curves), so raster and SVG frames show the same geometry.
+/// fitted with curves), so raster and SVG frames show the same geometry. Warped images are
+/// drawn triangle by triangle of their texture grid ([`super::texture`]), in paint order
+/// between runs of the other artwork, which resvg renders.
 pub(crate) fn render_side(scene: &Scene, opts: &FrameOptions) -> Result<Pixmap> {
-    render_svg(&side_svg(scene, opts)?, &scene.file, opts)
+    if !super::texture::has_warped_image(&scene.root) {
+        return render_svg(&side_svg(scene, opts)?, &scene.file, opts);
+    }
+    let mut pixmap = blank(opts, &scene.file)?;
+    let to_px = view_transform(opts) * scene.root_transform;
+    draw_items(&mut pixmap, scene, &scene.root.children, to_px, opts)?;
+    Ok(pixmap)
+}
+
+/// The map from user space to output pixels that the frame's root element sets up (`width`,
+/// `height` and `viewBox`, `preserveAspectRatio` at its default `xMidYMid meet`).
+pub(crate) fn view_transform(opts: &FrameOptions) -> kurbo::Affine {
+    let (lo, hi) = opts.view_box;
+    let (vw, vh) = (hi.x - lo.x, hi.y - lo.y);
+    let (w, h) = (opts.size.0 as f64, opts.size.1 as f64);
+    let k = (w / vw).min(h / vh);
+    if !k.is_finite() || k <= 0.0 {
+        return kurbo::Affine::IDENTITY;
+    }
+    kurbo::Affine::new([
+        k,
+        0.0,
+        0.0,
+        k,
+        (w - vw * k) / 2.0 - lo.x * k,
+        (h - vh * k) / 2.0 - lo.y * k,
+    ])
+}
+
+/// Draws `items` of `scene` onto `pixmap` in paint order: warped images by the texture
+/// rasterizer, groups holding one through a layer of their own (for their opacity and clip),
+/// and every run of other artwork by resvg.
+fn draw_items(
+    pixmap: &mut Pixmap,
+    scene: &Scene,
+    items: &[Item],
+    to_px: kurbo::Affine,
+    opts: &FrameOptions,
+) -> Result<()> {
+    let mut run: Vec<Item> = Vec::new();
+    let flush = |pixmap: &mut Pixmap, run: &mut Vec<Item>| -> Result<()> {
+        if run.is_empty() {
+            return Ok(());
+        }
+        let part = Scene {
+            file: scene.file.clone(),
+            view_box: scene.view_box,
+            size: scene.size,
+            root_transform: scene.root_transform,
+            root: Group {
+                id: String::new(),
+                opacity: 1.0,
+                clip: None,
+                children: std::mem::take(run),
+            },
+        };
+        draw_svg(pixmap, &side_svg(&part, opts)?)
+    };
+    for item in items {
+        match item {
+            Item::Image(img) if img.grid.is_some() => {
+                flush(pixmap, &mut run)?;
+                if let Some(grid) = &img.grid {
+                    super::texture::draw_image(pixmap, img, grid, to_px);
+                }
+            }
+            Item::Group(g) if super::texture::has_warped_image(g) => {
+                flush(pixmap, &mut run)?;
+                if g.opacity == 1.0 && g.clip.is_none() {
+                    draw_items(pixmap, scene, &g.children, to_px, opts)?;
+                    continue;
+                }
+                let mut layer = blank(opts, &scene.file)?;
+                draw_items(&mut layer, scene, &g.children, to_px, opts)?;
+                let mask = g.clip.as_ref().and_then(|c| clip_mask(c, to_px, opts));
+                pixmap.draw_pixmap(
+                    0,
+                    0,
+                    layer.as_ref(),
+                    &PixmapPaint {
+                        opacity: g.opacity as f32,
+                        ..PixmapPaint::default()
+                    },
+                    Transform::identity(),
+                    mask.as_ref(),
+                );
+            }
+            other => run.push(other.clone()),
+        }
+    }
+    flush(pixmap, &mut run)
+}
+
+/// The coverage of a clip path (the union of its shapes) in output pixels, antialiased.
+fn clip_mask(clip: &Clip, to_px: kurbo::Affine, opts: &FrameOptions) -> Option<tiny_skia::Mask> {
+    let (w, h) = opts.size;
+    let mut mask = tiny_skia::Mask::new(w, h)?;
+    for shape in &clip.shapes {
+        let mut pb = tiny_skia::PathBuilder::new();
+        for el in (to_px * shape.path.clone()).elements() {
+            match *el {
+                kurbo::PathEl::MoveTo(p) => pb.move_to(p.x as f32, p.y as f32),
+                kurbo::PathEl::LineTo(p) => pb.line_to(p.x as f32, p.y as f32),
+                kurbo::PathEl::QuadTo(a, p) => {
+                    pb.quad_to(a.x as f32, a.y as f32, p.x as f32, p.y as f32)
+                }
+                kurbo::PathEl::CurveTo(a, b, p) => pb.cubic_to(
+                    a.x as f32, a.y as f32, b.x as f32, b.y as f32, p.x as f32, p.y as f32,
+                ),
+                kurbo::PathEl::ClosePath => pb.close(),
+            }
+        }
+        if let Some(path) = pb.finish() {
+            let rule = if shape.even_odd {
+                tiny_skia::FillRule::EvenOdd
+            } else {
+                tiny_skia::FillRule::Winding
+            };
+            mask.fill_path(&path, rule, true, Transform::identity());
+        }
+    }
+    Some(mask)
+}
+
+/// Renders crmorph's own SVG onto `pixmap`, over what it holds.
+fn draw_svg(pixmap: &mut Pixmap, svg: &str) -> Result<()> {
+    let read = crate::input::usvg_options("<frame>", None, &crate::input::InputPolicy::default());
+    let tree = usvg::Tree::from_str(svg, &read)
+        .map_err(|e| Error::internal(format!("crmorph wrote an SVG usvg cannot read: {e}")))?;
+    resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
+    Ok(())
 }
 
 /// Renders crmorph's own SVG of one side onto a transparent pixmap; `file` is the drawing an

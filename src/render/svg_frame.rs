@@ -29,10 +29,11 @@
 use super::tree::{fixed, matrix, Builder, Node, NumFormat, Value};
 use super::FrameOptions;
 use crate::artwork::{
-    Gradient, GradientKind, Group, ImageItem, Item, LineCap, LineJoin, Paint, PathItem, Rgba,
-    Scene, Spread, Stroke,
+    Gradient, GradientKind, Group, ImageGrid, ImageItem, Item, LineCap, LineJoin, Paint, PathItem,
+    Rgba, Scene, Spread, Stroke,
 };
 use crate::error::Result;
+use crate::geometry::Point;
 use kurbo::Affine;
 
 /// One drawing alone as a standalone SVG (what frames t = 0 and t = 1 are).
@@ -172,6 +173,8 @@ struct Document {
     /// Write every attribute that can vary between frames, even at its default value.
     uniform: bool,
     next_id: usize,
+    /// Output pixels per user unit.
+    px_per_unit: f64,
 }
 
 impl Document {
@@ -188,6 +191,7 @@ impl Document {
             fit,
             uniform,
             next_id: 0,
+            px_per_unit: opts.scale(),
         }
     }
 
@@ -287,7 +291,7 @@ impl Document {
                     body.close();
                 }
                 Item::Path(p) => self.path(p, prefix, defs, body),
-                Item::Image(img) => self.image(img, body),
+                Item::Image(img) => self.image(img, prefix, defs, body),
             }
         }
     }
@@ -471,7 +475,97 @@ impl Document {
         defs.close();
     }
 
-    fn image(&self, img: &ImageItem, body: &mut Builder) {
+    /// An image: as it is in the input's geometry (`fit` unset: the ends of a still frame),
+    /// else warped by its texture grid, piece by piece (`texture`).
+    fn image(&mut self, img: &ImageItem, prefix: &str, defs: &mut Builder, body: &mut Builder) {
+        match &img.grid {
+            Some(grid) if self.fit.is_some() => self.texture(img, grid, prefix, defs, body),
+            _ => self.plain_image(img, body),
+        }
+    }
+
+    /// A warped image: the image once in `defs`, then one `<use>` of it per triangle of its
+    /// texture grid, clipped to that triangle (in the image's pixels, so the clip never moves)
+    /// and placed by the triangle's affine map. Only the maps change from frame to frame, so
+    /// the animated SVG animates transforms alone. The clip triangles overlap their
+    /// neighbours by half an output pixel (at the image's rest scale), so that renderers that
+    /// antialias each clip leave no seam between them; the image's own edge is not grown.
+    fn texture(
+        &mut self,
+        img: &ImageItem,
+        grid: &ImageGrid,
+        prefix: &str,
+        defs: &mut Builder,
+        body: &mut Builder,
+    ) {
+        let s = |x: f64| Value::num(x, NumFormat::Sig);
+        let id = format!("{prefix}{}", self.next_id);
+        self.next_id += 1;
+        let mut a: Attrs = vec![
+            ("id", id.clone().into()),
+            ("width", s(img.width)),
+            ("height", s(img.height)),
+            ("preserveAspectRatio", "none".into()),
+        ];
+        if img.pixelated {
+            a.push(("image-rendering", "optimizeSpeed".into()));
+        }
+        a.push((
+            "xlink:href",
+            format!("data:{};base64,{}", img.mime, base64(&img.data)).into(),
+        ));
+        defs.empty("image", a);
+        // Half an output pixel in image pixels, at the image's rest placement.
+        let px = self.px_per_unit * img.transform.determinant().abs().sqrt();
+        let overlap = if px.is_finite() && px > 0.0 {
+            0.5 / px
+        } else {
+            0.0
+        };
+        let decimals = if overlap > 0.0 {
+            (-(overlap / 10.0).log10()).ceil().clamp(0.0, 12.0) as usize
+        } else {
+            3
+        };
+        body.open("g", Vec::new());
+        for piece in grid.pieces(img) {
+            let clip = format!("{prefix}{}", self.next_id);
+            self.next_id += 1;
+            let tri = grown(piece.image, overlap, img.width, img.height);
+            let mut outline = kurbo::BezPath::new();
+            outline.move_to((tri[0].x, tri[0].y));
+            outline.line_to((tri[1].x, tri[1].y));
+            outline.line_to((tri[2].x, tri[2].y));
+            outline.close_path();
+            defs.open("clipPath", vec![("id", clip.clone().into())]);
+            defs.empty(
+                "path",
+                vec![(
+                    "d",
+                    Value::Path {
+                        path: outline,
+                        decimals,
+                        fit: None,
+                    },
+                )],
+            );
+            defs.close();
+            // A degenerate placement draws nothing but keeps the element (keyframes line up).
+            let m = piece.transform().unwrap_or(Affine::scale(0.0));
+            body.empty(
+                "use",
+                vec![
+                    ("xlink:href", format!("#{id}").into()),
+                    ("transform", Value::Matrix(m)),
+                    ("clip-path", format!("url(#{clip})").into()),
+                ],
+            );
+        }
+        body.close();
+    }
+
+    /// An image drawn with its own transform.
+    fn plain_image(&self, img: &ImageItem, body: &mut Builder) {
         let s = |x: f64| Value::num(x, NumFormat::Sig);
         let mut a: Attrs = vec![
             ("width", s(img.width)),
@@ -488,6 +582,46 @@ impl Document {
         ));
         body.empty("image", a);
     }
+}
+
+/// Triangle `tri` (image pixels) with every edge that is not on the image's edge (`0 ≤ x ≤
+/// width`, `0 ≤ y ≤ height`) moved out by `by`.
+fn grown(tri: [Point; 3], by: f64, width: f64, height: f64) -> [Point; 3] {
+    if by <= 0.0 {
+        return tri;
+    }
+    let on_edge = |a: Point, b: Point| {
+        (a.x == 0.0 && b.x == 0.0)
+            || (a.y == 0.0 && b.y == 0.0)
+            || (a.x == width && b.x == width)
+            || (a.y == height && b.y == height)
+    };
+    let ccw = crate::geometry::orient2d(tri[0], tri[1], tri[2]) > 0.0;
+    // Each edge i (from corner i to corner i + 1) as a line n·p = c with n pointing out.
+    let lines: Vec<(Point, f64)> = (0..3)
+        .map(|i| {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let d = (b - a).normalize_or_zero();
+            let n = if ccw {
+                Point::new(d.y, -d.x)
+            } else {
+                Point::new(-d.y, d.x)
+            };
+            let shift = if on_edge(a, b) { 0.0 } else { by };
+            (n, n.dot(a) + shift)
+        })
+        .collect();
+    // Corner i is where edges i − 1 and i meet.
+    let mut out = tri;
+    for (i, corner) in out.iter_mut().enumerate() {
+        let (n1, c1) = lines[(i + 2) % 3];
+        let (n2, c2) = lines[i];
+        let det = n1.x * n2.y - n1.y * n2.x;
+        if det.abs() > 1e-12 {
+            *corner = Point::new((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det);
+        }
+    }
+    out
 }
 
 fn hex(c: Rgba) -> String {

@@ -12,3 +12,4 @@ mod motion;
 mod rounding;
 mod similarity;
 mod skeleton;
+mod texture;
