@@ -15,7 +15,7 @@
 use crate::artwork::{ImageGrid, ImageItem};
 use crate::geometry::Point;
 use kurbo::Affine;
-use tiny_skia::{FillRule, Mask, PathBuilder, Pixmap, PixmapPaint, Transform};
+use tiny_skia::{FillRule, Mask, PathBuilder, Pixmap, Transform};
 
 /// How far, in output pixels, the image's outer edge is pushed out before the antialiased
 /// outline mask cuts it back.
@@ -55,15 +55,30 @@ fn image_size(data: &[u8]) -> Option<(u32, u32)> {
 }
 
 /// Draws `img`, warped by `grid`, source-over onto `pixmap`; `to_px` maps root user space to
-/// the pixmap's pixels. An image that cannot be decoded is not drawn (a `log::warn!`).
-pub(crate) fn draw_image(pixmap: &mut Pixmap, img: &ImageItem, grid: &ImageGrid, to_px: Affine) {
+/// the pixmap's pixels. `onto_blank` says that `pixmap` is still fully transparent (the image
+/// is the first thing drawn on it, as when a picture is the whole drawing): the triangles
+/// then go straight into it and only the pixels along the outline are scaled by their
+/// coverage, instead of a layer composited through the mask. An image that cannot be decoded
+/// is not drawn (a `log::warn!`).
+pub(crate) fn draw_image(
+    pixmap: &mut Pixmap,
+    img: &ImageItem,
+    grid: &ImageGrid,
+    to_px: Affine,
+    onto_blank: bool,
+) {
     let Some(texture) = decoded(img) else {
         log::warn!("image '{}': cannot be decoded; not drawn", img.id);
         return;
     };
     let (w, h) = (pixmap.width(), pixmap.height());
-    let Some(mut layer) = Pixmap::new(w, h) else {
-        return;
+    let mut layer = if onto_blank {
+        None
+    } else {
+        match Pixmap::new(w, h) {
+            Some(l) => Some(l),
+            None => return,
+        }
     };
     let placed: Vec<Point> = grid
         .points
@@ -86,12 +101,15 @@ pub(crate) fn draw_image(pixmap: &mut Pixmap, img: &ImageItem, grid: &ImageGrid,
     );
     let sampler = Sampler {
         texels: texture.data(),
-        width: texture.width() as i64,
-        height: texture.height() as i64,
+        width: texture.width() as i32,
+        height: texture.height() as i32,
         nearest: img.pixelated,
     };
     let mut target = Target {
-        data: layer.data_mut(),
+        data: match &mut layer {
+            Some(l) => l.data_mut(),
+            None => pixmap.data_mut(),
+        },
         width: w as i64,
         height: h as i64,
     };
@@ -119,14 +137,26 @@ pub(crate) fn draw_image(pixmap: &mut Pixmap, img: &ImageItem, grid: &ImageGrid,
         return;
     };
     mask.fill_path(&outline, FillRule::Winding, true, Transform::identity());
-    pixmap.draw_pixmap(
-        0,
-        0,
-        layer.as_ref(),
-        &PixmapPaint::default(),
-        Transform::identity(),
-        Some(&mask),
-    );
+    match &layer {
+        Some(layer) => composite_masked(pixmap.data_mut(), layer.data(), mask.data()),
+        None => scale_by_mask(pixmap.data_mut(), mask.data()),
+    }
+}
+
+/// `pixels ← pixels · mask` (premultiplied RGBA8, 8-bit coverage, rounded), touching only the
+/// pixels the mask does not fully cover.
+fn scale_by_mask(pixels: &mut [u8], mask: &[u8]) {
+    for (p, &m) in pixels.chunks_exact_mut(4).zip(mask) {
+        match m {
+            255 => {}
+            0 => p.fill(0),
+            m => {
+                for c in p {
+                    *c = ((*c as u32 * m as u32 + 127) / 255) as u8;
+                }
+            }
+        }
+    }
 }
 
 /// The grid's placed vertices with those on the image's edge pushed out by
@@ -185,47 +215,74 @@ fn invert(m: Affine) -> Option<Affine> {
 /// Premultiplied RGBA8 texels, sampled with clamping to the edge.
 struct Sampler<'a> {
     texels: &'a [u8],
-    width: i64,
-    height: i64,
+    width: i32,
+    height: i32,
     nearest: bool,
 }
 
 impl Sampler<'_> {
-    /// The texel colour at texel coordinates `(u, v)` (texel centres at half integers).
-    #[inline]
-    fn sample(&self, u: f64, v: f64) -> [u8; 4] {
-        let at = |x: i64, y: i64| -> &[u8] {
-            let x = x.clamp(0, self.width - 1);
-            let y = y.clamp(0, self.height - 1);
-            let i = 4 * (y * self.width + x) as usize;
-            &self.texels[i..i + 4]
-        };
+    /// Texel `(x, y)` clamped to the image, packed as in memory (RGBA, little-endian).
+    #[inline(always)]
+    fn texel(&self, x: i32, y: i32) -> u32 {
+        let x = x.clamp(0, self.width - 1);
+        let y = y.clamp(0, self.height - 1);
+        let i = 4 * (y as usize * self.width as usize + x as usize);
+        match self.texels.get(i..i + 4) {
+            Some(&[r, g, b, a]) => u32::from_le_bytes([r, g, b, a]),
+            _ => 0,
+        }
+    }
+
+    /// Two horizontally adjacent texels `(x, y)` and `(x + 1, y)`, both inside the image.
+    #[inline(always)]
+    fn pair(&self, x: i32, y: i32) -> (u32, u32) {
+        let i = 4 * (y as usize * self.width as usize + x as usize);
+        match self.texels.get(i..i + 8) {
+            Some(&[r0, g0, b0, a0, r1, g1, b1, a1]) => (
+                u32::from_le_bytes([r0, g0, b0, a0]),
+                u32::from_le_bytes([r1, g1, b1, a1]),
+            ),
+            _ => (0, 0),
+        }
+    }
+
+    /// The colour at texel coordinates `(u, v)` (texel centres at half integers), packed:
+    /// bilinear with 8-bit weights, two channels at a time in 16-bit lanes, or the texel under
+    /// it when pixelated.
+    #[inline(always)]
+    fn sample(&self, u: f32, v: f32) -> u32 {
+        // Far outside the image every coordinate clamps alike; this keeps the casts in range
+        // and makes truncation a floor (the shifted values are positive).
+        const SHIFT: f32 = 16.0;
+        let u = u.clamp(-8.0, self.width as f32 + 8.0);
+        let v = v.clamp(-8.0, self.height as f32 + 8.0);
         if self.nearest {
-            let t = at(u.floor() as i64, v.floor() as i64);
-            return [t[0], t[1], t[2], t[3]];
+            let x = (u + SHIFT) as i32 - SHIFT as i32;
+            let y = (v + SHIFT) as i32 - SHIFT as i32;
+            return self.texel(x, y);
         }
-        let (x, y) = (u - 0.5, v - 0.5);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let (a, b, c, d) = (
-            at(x0, y0),
-            at(x0 + 1, y0),
-            at(x0, y0 + 1),
-            at(x0 + 1, y0 + 1),
-        );
-        let mut out = [0u8; 4];
-        for k in 0..4 {
-            let top = a[k] as f64 + (b[k] as f64 - a[k] as f64) * fx;
-            let bottom = c[k] as f64 + (d[k] as f64 - c[k] as f64) * fx;
-            out[k] = (top + (bottom - top) * fy + 0.5) as u8;
-        }
-        // Premultiplied: no channel above alpha, whatever the rounding did.
-        let a = out[3];
-        for v in &mut out[..3] {
-            *v = (*v).min(a);
-        }
-        out
+        let (x, y) = (u - 0.5 + SHIFT, v - 0.5 + SHIFT);
+        let (xi, yi) = (x as i32, y as i32);
+        let fx = ((x - xi as f32) * 256.0) as u32;
+        let fy = ((y - yi as f32) * 256.0) as u32;
+        let (x0, y0) = (xi - SHIFT as i32, yi - SHIFT as i32);
+        let ((a, b), (c, d)) = if x0 >= 0 && y0 >= 0 && x0 + 1 < self.width && y0 + 1 < self.height
+        {
+            (self.pair(x0, y0), self.pair(x0, y0 + 1))
+        } else {
+            (
+                (self.texel(x0, y0), self.texel(x0 + 1, y0)),
+                (self.texel(x0, y0 + 1), self.texel(x0 + 1, y0 + 1)),
+            )
+        };
+        let lerp = |p: u32, q: u32, f: u32| -> u32 {
+            const LANES: u32 = 0x00ff_00ff;
+            let (g, h) = (256 - f, f);
+            let even = ((p & LANES) * g + (q & LANES) * h + 0x0080_0080) >> 8;
+            let odd = (((p >> 8) & LANES) * g + ((q >> 8) & LANES) * h + 0x0080_0080) >> 8;
+            (even & LANES) | ((odd & LANES) << 8)
+        };
+        lerp(lerp(a, b, fx), lerp(c, d, fx), fy)
     }
 }
 
@@ -250,40 +307,96 @@ fn edge(a: Point, b: Point, p: Point) -> f64 {
 }
 
 /// Fills triangle `tri` (output pixels) with texels at `to_texel` of each pixel centre.
+///
+/// A pixel is inside when its centre is strictly on the triangle's side of every edge, or on
+/// an edge whose triangle side is the positive one ([`edge`]). That decision is made exactly
+/// for the pixels at the two ends of each row's run (found from the run's approximate ends);
+/// the pixels between are inside because the triangle is convex.
+#[inline(never)]
 fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler: &Sampler) {
     let [a, b, c] = tri;
     if crate::geometry::orient2d(a, b, c) == 0.0 {
         return;
     }
-    // Each edge with the side its triangle lies on: a pixel exactly on an edge goes to the
-    // triangle on the positive side (the one neighbour that has it there).
     let edges = [(a, b, c), (b, c, a), (c, a, b)].map(|(p, q, r)| {
         let s = edge(p, q, r);
         (p, q, if s > 0.0 { 1.0 } else { -1.0 })
     });
+    let inside = |p: Point| {
+        edges.iter().all(|&(e0, e1, s)| {
+            let v = edge(e0, e1, p) * s;
+            v > 0.0 || (v == 0.0 && s > 0.0)
+        })
+    };
     let lo = a.min(b).min(c);
     let hi = a.max(b).max(c);
     let x0 = ((lo.x - 0.5).ceil() as i64).max(0);
     let x1 = ((hi.x - 0.5).floor() as i64).min(target.width - 1);
     let y0 = ((lo.y - 0.5).ceil() as i64).max(0);
     let y1 = ((hi.y - 0.5).floor() as i64).min(target.height - 1);
+    if x0 > x1 {
+        return;
+    }
     let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
     for y in y0..=y1 {
         let py = y as f64 + 0.5;
-        let row = (y * target.width) as usize;
-        for x in x0..=x1 {
-            let p = Point::new(x as f64 + 0.5, py);
-            let inside = edges.iter().all(|&(e0, e1, s)| {
-                let v = edge(e0, e1, p) * s;
-                v > 0.0 || (v == 0.0 && s > 0.0)
-            });
-            if !inside {
+        // The run's approximate ends: where the row crosses the edges, a pixel wide.
+        let (mut left, mut right) = (x0 as f64, x1 as f64);
+        for &(e0, e1, s) in &edges {
+            let (dy, dx) = (e1.y - e0.y, e1.x - e0.x);
+            if dy == 0.0 {
                 continue;
             }
-            let u = m0 * p.x + m2 * p.y + m4;
-            let v = m1 * p.x + m3 * p.y + m5;
-            let i = 4 * (row + x as usize);
-            target.data[i..i + 4].copy_from_slice(&sampler.sample(u, v));
+            // Inside grows with x where s·(−dy) > 0 (the edge function's x slope is −dy).
+            let cross = e0.x + dx * (py - e0.y) / dy - 0.5;
+            if s * -dy > 0.0 {
+                left = left.max(cross.floor() - 1.0);
+            } else {
+                right = right.min(cross.ceil() + 1.0);
+            }
+        }
+        let (mut l, mut r) = (left.max(x0 as f64) as i64, right.min(x1 as f64) as i64);
+        let centre = |x: i64| Point::new(x as f64 + 0.5, py);
+        while l <= r && !inside(centre(l)) {
+            l += 1;
+        }
+        while r >= l && !inside(centre(r)) {
+            r -= 1;
+        }
+        if l > r {
+            continue;
+        }
+        let row = (y * target.width) as usize;
+        let (px, mut u, mut v) = (l as f64 + 0.5, 0.0f32, 0.0f32);
+        u += (m0 * px + m2 * py + m4) as f32;
+        v += (m1 * px + m3 * py + m5) as f32;
+        let (du, dv) = (m0 as f32, m1 as f32);
+        let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize + 1)];
+        for (k, px) in out.chunks_exact_mut(4).enumerate() {
+            let k = k as f32;
+            px.copy_from_slice(&sampler.sample(u + du * k, v + dv * k).to_le_bytes());
+        }
+    }
+}
+
+/// `below ← layer over below` through coverage `mask` (premultiplied RGBA8, 8-bit coverage,
+/// rounded): the image's layer cut by its antialiased outline.
+#[inline(never)]
+fn composite_masked(below: &mut [u8], layer: &[u8], mask: &[u8]) {
+    for ((d, s), &m) in below
+        .chunks_exact_mut(4)
+        .zip(layer.chunks_exact(4))
+        .zip(mask)
+    {
+        if m == 0 || s[3] == 0 {
+            continue;
+        }
+        let m = m as u32;
+        // The layer's pixel scaled by the coverage, then source-over.
+        let src = [0, 1, 2, 3].map(|k| (s[k] as u32 * m + 127) / 255);
+        let keep = 255 - src[3];
+        for k in 0..4 {
+            d[k] = (src[k] + (d[k] as u32 * keep + 127) / 255).min(255) as u8;
         }
     }
 }

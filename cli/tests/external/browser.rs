@@ -17,12 +17,17 @@ use tiny_skia::Pixmap;
 use crate::{needing, tools};
 
 pub(crate) fn trials() -> Vec<Trial> {
-    let chrome = tools::chromium(2);
+    let chrome = tools::chromium(3);
     vec![
         needing(
             "browser::animated_svg_paused_in_chromium_shows_crmorphs_frames",
             &chrome,
             animated_svg_paused_shows_crmorphs_frames,
+        ),
+        needing(
+            "browser::animated_svg_of_a_texture_paused_in_chromium_shows_crmorphs_frames",
+            &chrome,
+            animated_texture_paused_shows_crmorphs_frames,
         ),
         needing(
             "browser::html_preview_slider_scrubs_to_crmorphs_frames",
@@ -113,8 +118,15 @@ struct Fixture {
 /// The gourd morph as an animated SVG and as an HTML preview, and crmorph's PNG frames at
 /// [`TIMES`], all 400×400 on white.
 fn gourd(outputs: &[&str]) -> Fixture {
+    fixture("gourd", outputs)
+}
+
+/// [`gourd`] for the pair in `fixtures/NAME`.
+fn fixture(name: &str, outputs: &[&str]) -> Fixture {
     let work = tempfile::tempdir().unwrap();
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/gourd");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(name);
     let (s, t) = (root.join("source.svg"), root.join("target.svg"));
     let size = format!("{}x{}", SIZE.0, SIZE.1);
     let duration = DURATION.to_string();
@@ -141,7 +153,18 @@ fn gourd(outputs: &[&str]) -> Fixture {
 }
 
 fn animated_svg_paused_shows_crmorphs_frames(chrome: &Path) -> Result<(), String> {
-    let f = gourd(&["morph.svg"]);
+    paused_svg_shows_frames(chrome, &gourd(&["morph.svg"]))
+}
+
+/// Issue 14: an image warped through the mesh, written as clipped, moving pieces of one
+/// embedded image, shows in Chromium what crmorph's own texture rasterizer draws (same
+/// tolerance as the gourd).
+fn animated_texture_paused_shows_crmorphs_frames(chrome: &Path) -> Result<(), String> {
+    paused_svg_shows_frames(chrome, &fixture("textures/turn", &["morph.svg"]))
+}
+
+/// The animated SVG of `f`, paused at each of [`TIMES`], against crmorph's PNG frames.
+fn paused_svg_shows_frames(chrome: &Path, f: &Fixture) -> Result<(), String> {
     let svg = std::fs::read_to_string(f.work.path().join("morph.svg")).unwrap();
     for (at, reference) in TIMES.iter().zip(&f.frames) {
         // The SVG inline in a bare page, its timeline paused at t · duration.
