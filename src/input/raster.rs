@@ -11,7 +11,7 @@
 //!   128), of the largest region they form, holes ignored. The outline of the region's pixel
 //!   squares is pushed outward by the simplification tolerance, then simplified
 //!   (Douglas–Peucker) to that tolerance: the drawing's flattening tolerance (a thousandth of the
-//!   image's diagonal), never below 0.75 px so that the stair-steps of a 45° pixel edge (0.71 px
+//!   image's diagonal), never below 1 px so that the stair-steps of pixel edges (at most a pixel
 //!   deep) vanish. The result is checked to be a simple closed polygon containing every pixel
 //!   square of the region; failing that, it is pushed out further and simplified less. Pixels
 //!   less than half opaque (the outer half of an anti-aliased edge) may lie outside: the
@@ -76,8 +76,9 @@ pub fn sniff(bytes: &[u8]) -> Option<ImageFormat> {
 const ALPHA_INSIDE: u8 = 128;
 /// Fewest pixels the largest opaque region of an image may have.
 const MIN_REGION_PIXELS: f64 = 16.0;
-/// Smallest simplification tolerance, in pixels: above the 0.71 px of a 45° stair-step.
-const MIN_TOLERANCE_PX: f64 = 0.75;
+/// Smallest simplification tolerance, in pixels: stair-steps of pixel edges are at most one
+/// pixel deep.
+const MIN_TOLERANCE_PX: f64 = 1.0;
 
 /// The opening tag of the guide group of an image drawing, where controls are merged.
 const CONTROLS_OPEN: &str = "<g id=\"controls\" style=\"display:none\">";
@@ -369,12 +370,13 @@ fn traced_boundary(name: &str, alpha: &[u8], w: usize, h: usize) -> Result<Vec<P
         ));
     }
     // Pushed out by the tolerance, a simplified outline holds the region unless it cuts a
-    // concave corner deeply; then it is pushed out further, and simplified less.
-    for push in [1.0, 1.5, 2.0, 3.0] {
-        let Some(grown) = grow(push * tolerance) else {
-            continue;
-        };
-        for tol in [1.0, 0.5, 0.25] {
+    // concave corner deeply; then it is pushed out further and, only if that fails, simplified
+    // less (which brings the stair-steps back).
+    for tol in [1.0, 0.5, 0.25] {
+        for push in [0.5, 1.0, 1.5, 2.0, 3.0] {
+            let Some(grown) = grow(push * tolerance) else {
+                continue;
+            };
             let candidate = rounded(&douglas_peucker(&grown, tol * tolerance));
             if is_valid(&candidate, &samples) {
                 return Ok(candidate);
@@ -549,8 +551,8 @@ mod tests {
 
     #[test]
     fn a_transparent_disc_is_traced_close_to_its_outline() {
-        let (cx, cy, r) = (64.0, 60.0, 40.0);
-        let (w, h) = (128, 128);
+        let (cx, cy, r) = (128.0, 120.0, 100.0);
+        let (w, h) = (256, 256);
         let bytes = png(w, h, |x, y| disc(x, y, (cx, cy, r)));
         let d = drawing("disc.png", &bytes).unwrap();
         let b = &d.controls.boundary.points;
