@@ -188,13 +188,13 @@ pub fn merge_controls(
     Ok(out)
 }
 
+/// What [`root_content`] finds: the root's namespace declarations, its content, and whether the
+/// boundary is in it.
+type RootContent<'a> = (Vec<(String, String)>, &'a str, bool);
+
 /// The namespace declarations of the root element of `text`, the text between its start and
 /// end tags, and whether an element inside has the id `boundary_id`.
-fn root_content<'a>(
-    name: &str,
-    text: &'a str,
-    boundary_id: &str,
-) -> Result<(Vec<(String, String)>, &'a str, bool)> {
+fn root_content<'a>(name: &str, text: &'a str, boundary_id: &str) -> Result<RootContent<'a>> {
     use quick_xml::events::Event;
     let bad = |e: String| Error::input(name, format!("controls: not well-formed XML: {e}"));
     let mut reader = quick_xml::Reader::from_str(text);
@@ -593,7 +593,7 @@ mod tests {
         // A ring (a disc with a hole) and a small square apart from it.
         let bytes = png(100, 100, |x, y| {
             let d = ((x as f64 - 40.0).powi(2) + (y as f64 - 40.0).powi(2)).sqrt();
-            let on = (15.0..30.0).contains(&d) || (x >= 85 && x < 92 && y >= 85 && y < 92);
+            let on = (15.0..30.0).contains(&d) || ((85..92).contains(&x) && (85..92).contains(&y));
             [0, 0, 0, if on { 255 } else { 0 }]
         });
         let d = drawing("ring.png", &bytes).unwrap();
@@ -627,8 +627,10 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.starts_with("bad.png: image: cannot"), "{e}");
-        let mut small = Limits::default();
-        small.pixels = 100;
+        let small = Limits {
+            pixels: 100,
+            ..Limits::default()
+        };
         let e = image_svg("big.png", &clear, ImageFormat::Png, &small)
             .unwrap_err()
             .to_string();
