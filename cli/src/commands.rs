@@ -52,13 +52,18 @@ impl MethodArg {
 /// Inputs and control conventions shared by every command.
 #[derive(Debug, Clone, Args)]
 pub(crate) struct Inputs {
-    /// The source SVG drawing.
+    /// The source drawing: SVG (.svgz too) or an image (PNG, JPEG, GIF, WebP).
     pub(crate) source: PathBuf,
-    /// The target SVG drawing.
+    /// The target drawing: SVG (.svgz too) or an image (PNG, JPEG, GIF, WebP).
     pub(crate) target: PathBuf,
     /// Output file; its extension picks the format.
     #[arg(short, long)]
     pub(crate) output: PathBuf,
+    /// Control geometry for two image inputs (PNG, JPEG, GIF, WebP): SVGs drawn in each
+    /// image's pixel coordinates, whose feature curves, anchors, skeleton and optional boundary
+    /// (replacing the traced one) steer the morph.
+    #[arg(long, num_args = 2, value_names = ["SRC.svg", "TGT.svg"])]
+    pub(crate) controls: Option<Vec<PathBuf>>,
     #[command(flatten)]
     pub(crate) reading: Reading,
 }
@@ -401,9 +406,42 @@ fn read_options(inputs: &Inputs) -> ReadOptions {
 
 fn read_both(inputs: &Inputs) -> Result<(Drawing, Drawing)> {
     let opts = read_options(inputs);
+    if let Some(controls) = &inputs.controls {
+        if let [sc, tc] = controls.as_slice() {
+            let s = read_image_with_controls(&inputs.source, sc, inputs, &opts)?;
+            let t = read_image_with_controls(&inputs.target, tc, inputs, &opts)?;
+            return Ok((s, t));
+        }
+    }
     let s = Drawing::open(&inputs.source, &opts)?;
     let t = Drawing::open(&inputs.target, &opts)?;
     Ok((s, t))
+}
+
+/// The drawing of the image at `image` with the control geometry of `controls` merged in
+/// (`--controls`); a usage error when `image` is not a raster image.
+fn read_image_with_controls(
+    image: &Path,
+    controls: &Path,
+    inputs: &Inputs,
+    opts: &ReadOptions,
+) -> Result<Drawing> {
+    let name = crmorph::error::printable_path(image);
+    let controls_name = crmorph::error::printable_path(controls);
+    let text = crmorph::input::read_image_with_controls(
+        (image, &name),
+        (controls, &controls_name),
+        &inputs.reading.boundary_id,
+        &opts.policy.limits,
+    )?;
+    let Some(text) = text else {
+        return Err(Usage(format!(
+            "--controls: {name} is not an image (PNG, JPEG, GIF or WebP); an SVG drawing \
+             carries its control geometry itself"
+        ))
+        .into());
+    };
+    Ok(Drawing::from_str(&name, &text, opts)?)
 }
 
 /// The two drawings (with automatic control geometry when unmarked), their compatible
@@ -439,7 +477,9 @@ pub(crate) struct Shapes {
 }
 
 fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
-    refuse_overwriting_inputs(&inputs.output, &[&inputs.source, &inputs.target])?;
+    let mut read: Vec<&Path> = vec![&inputs.source, &inputs.target];
+    read.extend(inputs.controls.iter().flatten().map(PathBuf::as_path));
+    refuse_overwriting_inputs(&inputs.output, &read)?;
     progress.stage("reading drawings");
     let (s, t) = read_both(inputs)?;
     // Ids that almost follow a convention are plain artwork; say so before anything they cause.
@@ -858,4 +898,34 @@ pub(crate) fn skeleton(a: &SkeletonArgs, progress: &Progress) -> Result<()> {
     let width = 0.006 * (hi - lo).length();
     let text = pose_svg(&frame, control.skeleton(), &joints, a.at, width);
     write_atomic(&a.inputs.output, text.as_bytes())
+}
+
+/// `crmorph init`: an image as an SVG drawing to draw controls on.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct InitArgs {
+    /// The image: PNG, JPEG, GIF or WebP.
+    pub(crate) image: PathBuf,
+    /// The SVG to write.
+    #[arg(short, long)]
+    pub(crate) output: PathBuf,
+    #[command(flatten)]
+    pub(crate) safety: crate::policy::Safety,
+}
+
+/// Runs `init`: writes the SVG that embeds the image, with its boundary (the image rectangle,
+/// or the traced outline of its alpha) in a hidden `controls` group, ready for feature curves.
+pub(crate) fn init(a: &InitArgs) -> Result<()> {
+    output_format(&a.output, &[Format::Svg], "init")?;
+    refuse_overwriting_inputs(&a.output, &[&a.image])?;
+    let limits = a.safety.policy().limits;
+    let name = crmorph::error::printable_path(&a.image);
+    let bytes = crmorph::input::read_file(&a.image, &name, &limits)?;
+    let Some(format) = crmorph::input::raster::sniff(&bytes) else {
+        return Err(Usage(format!(
+            "{name}: crmorph init reads an image (PNG, JPEG, GIF or WebP), not this file"
+        ))
+        .into());
+    };
+    let svg = crmorph::input::raster::image_svg(&name, &bytes, format, &limits)?;
+    write_atomic(&a.output, svg.as_bytes())
 }

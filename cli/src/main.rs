@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use commands::{FrameArgs, InspectArgs, MorphArgs, SkeletonArgs, Usage};
+use commands::{FrameArgs, InitArgs, InspectArgs, MorphArgs, SkeletonArgs, Usage};
 use docs::{CompletionsArgs, ManArgs};
 use progress::Progress;
 
@@ -66,6 +66,10 @@ enum Command {
     Inspect(InspectArgs),
     /// The derived skeleton at time T drawn over that frame (.svg), to edit into a --pose file.
     Skeleton(SkeletonArgs),
+    /// An image (PNG, JPEG, GIF, WebP) as an SVG to draw controls on: the image embedded, its
+    /// boundary (the image rectangle, or the outline of its opaque pixels) in a hidden
+    /// `controls` group where feature-NAME curves go.
+    Init(InitArgs),
     /// Morph many pairs in parallel, from a manifest (CSV or JSON lines) or two folders, with
     /// a JSON-lines report; pairs whose output is up to date are skipped (docs/batch.md).
     Batch(batch::BatchArgs),
@@ -87,6 +91,7 @@ fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Frame(a)) => commands::frame(a, &progress),
         Some(Command::Inspect(a)) => commands::inspect(a, &progress),
         Some(Command::Skeleton(a)) => commands::skeleton(a, &progress),
+        Some(Command::Init(a)) => commands::init(a),
         Some(Command::Batch(a)) => batch::run(a, &progress),
         Some(Command::Completions(a)) => docs::completions(a, &mut std::io::stdout().lock()),
         Some(Command::Man(a)) => docs::man(a, &mut std::io::stdout().lock()),

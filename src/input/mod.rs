@@ -46,6 +46,7 @@ pub struct InputPolicy {
 mod encoding;
 mod entities;
 mod file;
+pub mod raster;
 mod resources;
 mod scan;
 
@@ -56,7 +57,7 @@ pub use resources::{local_path, Refusal};
 use std::borrow::Cow;
 use std::path::Path;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// `text` made safe to parse: its document type declaration removed with the internal
 /// entities expanded under the byte limit ([`Limits::input_bytes`]), then checked against the
@@ -71,11 +72,46 @@ pub fn prepare<'a>(name: &str, text: &'a str, limits: &Limits) -> Result<Cow<'a,
 }
 
 /// The text of the SVG file at `path` under the policy: read with [`read_file`], decoded with
-/// [`decode`] and made safe with [`prepare`]. `name` is how errors call it.
+/// [`decode`] and made safe with [`prepare`]. `name` is how errors call it. A raster image
+/// (PNG, JPEG, GIF or WebP, by its signature) is read as the drawing that embeds it
+/// ([`raster::image_svg`]).
 pub fn read_svg(path: &Path, name: &str, limits: &Limits) -> Result<String> {
     let bytes = read_file(path, name, limits)?;
+    if let Some(format) = raster::sniff(&bytes) {
+        let svg = raster::image_svg(name, &bytes, format, limits)?;
+        return Ok(prepare(name, &svg, limits)?.into_owned());
+    }
     let text = decode(name, &bytes, limits)?;
     Ok(prepare(name, &text, limits)?.into_owned())
+}
+
+/// The drawing of the raster image at `image` (named `image_name`) with the control geometry
+/// of the SVG file `controls` (named `controls_name`, drawn in the image's pixel coordinates)
+/// merged into it ([`raster::merge_controls`]), both read under the policy's `limits`;
+/// `boundary_id` is the boundary's id. `None` when `image` is not a raster image.
+pub fn read_image_with_controls(
+    (image, image_name): (&Path, &str),
+    (controls, controls_name): (&Path, &str),
+    boundary_id: &str,
+    limits: &Limits,
+) -> Result<Option<String>> {
+    let bytes = read_file(image, image_name, limits)?;
+    let Some(format) = raster::sniff(&bytes) else {
+        return Ok(None);
+    };
+    let svg = raster::image_svg(image_name, &bytes, format, limits)?;
+    let controls_bytes = read_file(controls, controls_name, limits)?;
+    if raster::sniff(&controls_bytes).is_some() {
+        return Err(Error::input(
+            controls_name,
+            "is an image; controls are an SVG drawn in the image's pixel coordinates",
+        ));
+    }
+    let controls_text = decode(controls_name, &controls_bytes, limits)?;
+    let controls_text = prepare(controls_name, &controls_text, limits)?;
+    let merged =
+        raster::merge_controls(image_name, &svg, controls_name, &controls_text, boundary_id)?;
+    Ok(Some(prepare(image_name, &merged, limits)?.into_owned()))
 }
 
 /// usvg options under `policy` for the drawing `file` in folder `dir`: images resolved by the

@@ -242,6 +242,7 @@ fn template(a: &BatchArgs) -> MorphArgs {
             source: PathBuf::new(),
             target: PathBuf::new(),
             output: PathBuf::new(),
+            controls: None,
             reading: a.reading.clone(),
         },
         method: a.method,
