@@ -12,16 +12,20 @@
 //! Why a grid and not the mesh's own triangles: the number of pieces stays bounded whatever the
 //! mesh's density ([`MAX_CELLS`] a side), which is what an animated SVG pays for per piece, and
 //! the parts of an image outside the mesh are carried by the same rule as the rest. The cells
-//! are as long as the mesh's mean edge, so the grid resolves the mesh's map; where that map is
-//! affine (the ends of the morph, a similarity) the grid reproduces it exactly.
+//! the SVG outputs draw are as long as the mesh's mean edge, and raster frames draw each of
+//! them as four (half as long: cheap in pixels, where a piece costs no bytes), so the grid
+//! resolves the mesh's map; where that map is affine (the ends of the morph, a similarity) the
+//! grid reproduces it exactly. Where a cell straddles a narrow gap between two parts of the
+//! shape that move apart, the pixels in the gap are stretched across it (at most a cell wide).
 
 use super::ImageItem;
 use crate::geometry::Point;
 use kurbo::Affine;
 use std::sync::{Arc, OnceLock};
 
-/// Most cells along the longer side of an image's texture grid (so at most `2·MAX_CELLS²`
-/// pieces per image).
+/// Most cells along the longer side of an image's texture grid as the SVG outputs draw it
+/// (at most `2·MAX_CELLS²` pieces per image); the bound grid, which raster frames draw, has
+/// twice as many a side ([`ImageGrid::pieces_every`]).
 pub(crate) const MAX_CELLS: u32 = 32;
 
 /// Where an image's texture grid lies in a frame: `(columns + 1) × (rows + 1)` grid vertices,
@@ -118,9 +122,26 @@ impl ImageGrid {
     /// Every cell's two triangles, row by row, each cell cut along its diagonal from the
     /// top-left to the bottom-right corner.
     pub fn pieces<'a>(&'a self, img: &'a ImageItem) -> impl Iterator<Item = ImagePiece> + 'a {
-        (0..self.rows).flat_map(move |j| {
-            (0..self.columns).flat_map(move |i| {
-                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+        self.pieces_every(img, 1)
+    }
+
+    /// [`ImageGrid::pieces`] of the coarser grid made of every `step`-th grid line (`step`
+    /// must divide both the columns and the rows; 1 is used where it does not): raster frames
+    /// draw the bound grid, the SVG outputs every second line of it (a quarter of the
+    /// elements).
+    pub fn pieces_every<'a>(
+        &'a self,
+        img: &'a ImageItem,
+        step: u32,
+    ) -> impl Iterator<Item = ImagePiece> + 'a {
+        let s = if step > 0 && self.columns % step == 0 && self.rows % step == 0 {
+            step
+        } else {
+            1
+        };
+        (0..self.rows).step_by(s as usize).flat_map(move |j| {
+            (0..self.columns).step_by(s as usize).flat_map(move |i| {
+                let corners = [(i, j), (i + s, j), (i + s, j + s), (i, j + s)];
                 [[0, 1, 2], [0, 2, 3]].into_iter().map(move |tri| {
                     let at = tri.map(|k| corners[k]);
                     ImagePiece {
@@ -243,6 +264,16 @@ mod tests {
         }
         let border = grid.border();
         assert_eq!(border.len(), 10);
+        // Every second grid line: 3 × 2 cells do not halve, so the grid is kept.
+        assert_eq!(grid.pieces_every(&img, 2).count(), 12);
+        let fine = ImageGrid {
+            columns: 4,
+            rows: 2,
+            points: ImageGrid::rest_points(&img, 4, 2),
+        };
+        let coarse: Vec<_> = fine.pieces_every(&img, 2).collect();
+        assert_eq!(coarse.len(), 4);
+        assert_eq!(coarse[1].image[1], Point::new(20.0, 20.0));
         assert!(border.iter().all(|&k| grid.on_border(k)));
         assert!(!grid.on_border(grid.vertex(1, 1)));
     }
