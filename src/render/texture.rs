@@ -116,7 +116,7 @@ pub(crate) fn draw_image(
     for piece in grid.pieces(img) {
         // Output pixels → texels, from the undilated placement.
         let px = piece.vertices.map(|k| placed[k]);
-        let Some(back) = affine_from(piece.image, px).and_then(|m| invert(m)) else {
+        let Some(back) = affine_from(piece.image, px).and_then(invert) else {
             continue;
         };
         let tri = piece.vertices.map(|k| filled[k]);
@@ -294,83 +294,110 @@ struct Target<'a> {
     height: i64,
 }
 
-/// The edge function of the line through `a` and `b` at `p`, computed from the endpoints in
-/// one fixed (lexicographic) order so that two triangles sharing the edge get exactly opposite
-/// values.
-#[inline]
-fn edge(a: Point, b: Point, p: Point) -> f64 {
-    if (a.x, a.y) <= (b.x, b.y) {
-        (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
-    } else {
-        -((a.x - b.x) * (p.y - b.y) - (a.y - b.y) * (p.x - b.x))
+/// The edge function of the line through two corners, `E(x, y) = a·x + b·y + c`, its
+/// coefficients computed from the endpoints in one fixed (lexicographic) order, so that the
+/// two triangles sharing an edge compute bit-identical values at every pixel centre.
+#[derive(Clone, Copy)]
+struct Edge {
+    a: f64,
+    b: f64,
+    c: f64,
+    /// +1 when the triangle lies where `E > 0`, else −1.
+    side: f64,
+}
+
+impl Edge {
+    fn new(p: Point, q: Point, third: Point) -> Edge {
+        let (p, q) = if (p.x, p.y) <= (q.x, q.y) {
+            (p, q)
+        } else {
+            (q, p)
+        };
+        let (dx, dy) = (q.x - p.x, q.y - p.y);
+        let (a, b, c) = (-dy, dx, dy * p.x - dx * p.y);
+        let at_third = a * third.x + (b * third.y + c);
+        Edge {
+            a,
+            b,
+            c,
+            side: if at_third > 0.0 { 1.0 } else { -1.0 },
+        }
+    }
+
+    /// The part of `E` that is constant along pixel row `y` (centre `py`).
+    #[inline(always)]
+    fn row(&self, py: f64) -> f64 {
+        self.b * py + self.c
+    }
+
+    /// Whether the pixel centre at `px` of a row with constant `row` is on the triangle's
+    /// side: strictly, or exactly on the edge when the triangle's side is the positive one
+    /// (the tie goes to one of the two triangles sharing the edge, never both, never neither).
+    #[inline(always)]
+    fn holds(&self, px: f64, row: f64) -> bool {
+        let v = (self.a * px + row) * self.side;
+        v > 0.0 || (v == 0.0 && self.side > 0.0)
     }
 }
 
 /// Fills triangle `tri` (output pixels) with texels at `to_texel` of each pixel centre.
 ///
-/// A pixel is inside when its centre is strictly on the triangle's side of every edge, or on
-/// an edge whose triangle side is the positive one ([`edge`]). That decision is made exactly
-/// for the pixels at the two ends of each row's run (found from the run's approximate ends);
-/// the pixels between are inside because the triangle is convex.
-#[inline(never)]
+/// A pixel is inside when its centre is on the triangle's side of all three edges
+/// ([`Edge::holds`]). That decision is made exactly for the pixels at the two ends of each
+/// row's run (found from the run's approximate ends); the pixels between are inside because
+/// the triangle is convex.
 fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler: &Sampler) {
     let [a, b, c] = tri;
     if crate::geometry::orient2d(a, b, c) == 0.0 {
         return;
     }
-    let edges = [(a, b, c), (b, c, a), (c, a, b)].map(|(p, q, r)| {
-        let s = edge(p, q, r);
-        (p, q, if s > 0.0 { 1.0 } else { -1.0 })
-    });
-    let inside = |p: Point| {
-        edges.iter().all(|&(e0, e1, s)| {
-            let v = edge(e0, e1, p) * s;
-            v > 0.0 || (v == 0.0 && s > 0.0)
-        })
-    };
+    let edges = [Edge::new(a, b, c), Edge::new(b, c, a), Edge::new(c, a, b)];
     let lo = a.min(b).min(c);
     let hi = a.max(b).max(c);
-    let x0 = ((lo.x - 0.5).ceil() as i64).max(0);
-    let x1 = ((hi.x - 0.5).floor() as i64).min(target.width - 1);
-    let y0 = ((lo.y - 0.5).ceil() as i64).max(0);
-    let y1 = ((hi.y - 0.5).floor() as i64).min(target.height - 1);
-    if x0 > x1 {
+    // Pixel ranges a pixel wider than the bounding box (truncation is not a floor below 0);
+    // the exact tests trim them.
+    let x0 = ((lo.x - 0.5) as i64).max(0);
+    let x1 = ((hi.x - 0.5) as i64 + 1).min(target.width - 1);
+    let y0 = ((lo.y - 0.5) as i64).max(0);
+    let y1 = ((hi.y - 0.5) as i64 + 1).min(target.height - 1);
+    if x0 > x1 || y0 > y1 {
         return;
     }
     let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
+    let (du, dv) = (m0 as f32, m1 as f32);
     for y in y0..=y1 {
         let py = y as f64 + 0.5;
-        // The run's approximate ends: where the row crosses the edges, a pixel wide.
-        let (mut left, mut right) = (x0 as f64, x1 as f64);
-        for &(e0, e1, s) in &edges {
-            let (dy, dx) = (e1.y - e0.y, e1.x - e0.x);
-            if dy == 0.0 {
+        let rows = edges.map(|e| e.row(py));
+        let inside = |x: i64| {
+            let px = x as f64 + 0.5;
+            (0..3).all(|k| edges[k].holds(px, rows[k]))
+        };
+        // The run's approximate ends: where the row crosses the edges, a pixel wider.
+        let (mut l, mut r) = (x0, x1);
+        for (e, row) in edges.iter().zip(rows) {
+            if e.a == 0.0 {
                 continue;
             }
-            // Inside grows with x where s·(−dy) > 0 (the edge function's x slope is −dy).
-            let cross = e0.x + dx * (py - e0.y) / dy - 0.5;
-            if s * -dy > 0.0 {
-                left = left.max(cross.floor() - 1.0);
+            let cross = (-row / e.a - 0.5).clamp(-1.0, target.width as f64 + 1.0) as i64;
+            if e.a * e.side > 0.0 {
+                l = l.max(cross - 1);
             } else {
-                right = right.min(cross.ceil() + 1.0);
+                r = r.min(cross + 1);
             }
         }
-        let (mut l, mut r) = (left.max(x0 as f64) as i64, right.min(x1 as f64) as i64);
-        let centre = |x: i64| Point::new(x as f64 + 0.5, py);
-        while l <= r && !inside(centre(l)) {
+        while l <= r && !inside(l) {
             l += 1;
         }
-        while r >= l && !inside(centre(r)) {
+        while r >= l && !inside(r) {
             r -= 1;
         }
         if l > r {
             continue;
         }
+        let px = l as f64 + 0.5;
+        let u = (m0 * px + m2 * py + m4) as f32;
+        let v = (m1 * px + m3 * py + m5) as f32;
         let row = (y * target.width) as usize;
-        let (px, mut u, mut v) = (l as f64 + 0.5, 0.0f32, 0.0f32);
-        u += (m0 * px + m2 * py + m4) as f32;
-        v += (m1 * px + m3 * py + m5) as f32;
-        let (du, dv) = (m0 as f32, m1 as f32);
         let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize + 1)];
         for (k, px) in out.chunks_exact_mut(4).enumerate() {
             let k = k as f32;
@@ -381,7 +408,6 @@ fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler
 
 /// `below ← layer over below` through coverage `mask` (premultiplied RGBA8, 8-bit coverage,
 /// rounded): the image's layer cut by its antialiased outline.
-#[inline(never)]
 fn composite_masked(below: &mut [u8], layer: &[u8], mask: &[u8]) {
     for ((d, s), &m) in below
         .chunks_exact_mut(4)
