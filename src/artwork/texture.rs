@@ -69,7 +69,7 @@ impl ImagePiece {
 
 impl ImageGrid {
     /// Cells across and down a grid over `img` whose cells are about `cell` user units long
-    /// (the mesh's mean edge), at least one and at most [`MAX_CELLS`] along the longer side.
+    /// (the mesh's mean edge), at least one and at most 32 along the longer side.
     pub fn size_for(img: &ImageItem, cell: f64) -> (u32, u32) {
         let [a, b, c, d, _, _] = img.transform.as_coeffs();
         let w = img.width * a.hypot(b);
