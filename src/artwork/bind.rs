@@ -456,10 +456,11 @@ fn bind_items(items: &[Item], locator: &Locator, tol: Resolution, out: &mut Vec<
                 }));
             }
             Item::Image(img) => {
-                // Cells as long as the mesh's mean edge (twice `max_segment`) for the SVG
-                // outputs, each split in four for raster frames (`texture`).
-                let (columns, rows) = super::ImageGrid::size_for(img, 2.0 * tol.max_segment);
-                let (columns, rows) = (2 * columns, 2 * rows);
+                // Cells twice as long as the mesh's mean edge (four times `max_segment`) for
+                // the SVG outputs, each split 4 × 4 for raster frames (`texture`).
+                let (columns, rows) = super::ImageGrid::size_for(img, 4.0 * tol.max_segment);
+                let split = super::texture::RASTER_SPLIT;
+                let (columns, rows) = (split * columns, split * rows);
                 let points = super::ImageGrid::rest_points(img, columns, rows);
                 let located = locator.for_item(&points);
                 out.push(BoundItem::Image(BoundImage {

@@ -36,6 +36,7 @@ pub use bind::{Binding, Location, PointLocator};
 pub use pair::ArtworkPair;
 pub use reach::{within_reach, FarPath, REACH};
 pub use scene::flatten_tolerance;
+pub(crate) use texture::RASTER_SPLIT;
 pub use texture::{DecodedImage, ImageGrid, ImagePiece};
 
 #[cfg(test)]

@@ -12,11 +12,12 @@
 //! Why a grid and not the mesh's own triangles: the number of pieces stays bounded whatever the
 //! mesh's density ([`MAX_CELLS`] a side), which is what an animated SVG pays for per piece, and
 //! the parts of an image outside the mesh are carried by the same rule as the rest. The cells
-//! the SVG outputs draw are as long as the mesh's mean edge, and raster frames draw each of
-//! them as four (half as long: cheap in pixels, where a piece costs no bytes), so the grid
-//! resolves the mesh's map; where that map is affine (the ends of the morph, a similarity) the
-//! grid reproduces it exactly. Where a cell straddles a narrow gap between two parts of the
-//! shape that move apart, the pixels in the gap are stretched across it (at most a cell wide).
+//! the SVG outputs draw are twice as long as the mesh's mean edge (at most [`MAX_CELLS`] a
+//! side), and raster frames draw each of them as 4 × 4 (half the mean edge: cheap in pixels,
+//! where a piece costs no bytes), so the raster grid resolves the mesh's map; where that map
+//! is affine (the ends of the morph, a similarity) every grid reproduces it exactly. Where a
+//! cell straddles a narrow gap between two parts of the shape that move apart, the pixels in
+//! the gap are stretched across it (at most a cell wide).
 
 use super::ImageItem;
 use crate::geometry::Point;
@@ -24,9 +25,14 @@ use kurbo::Affine;
 use std::sync::{Arc, OnceLock};
 
 /// Most cells along the longer side of an image's texture grid as the SVG outputs draw it
-/// (at most `2·MAX_CELLS²` pieces per image); the bound grid, which raster frames draw, has
-/// twice as many a side ([`ImageGrid::pieces_every`]).
-pub(crate) const MAX_CELLS: u32 = 32;
+/// (at most `2·MAX_CELLS²` pieces per image: every piece is an element with its own
+/// animation, a kilobyte or two of an animated SVG); the bound grid, which raster frames draw,
+/// splits each of those cells [`RASTER_SPLIT`] times a side ([`ImageGrid::pieces_every`]).
+pub(crate) const MAX_CELLS: u32 = 12;
+
+/// How many raster cells a side each SVG cell holds: raster frames pay per pixel, not per
+/// piece, so they draw the finer grid.
+pub(crate) const RASTER_SPLIT: u32 = 4;
 
 /// Where an image's texture grid lies in a frame: `(columns + 1) × (rows + 1)` grid vertices,
 /// row by row from the image's top-left corner, in root user space.
@@ -69,7 +75,7 @@ impl ImagePiece {
 
 impl ImageGrid {
     /// Cells across and down a grid over `img` whose cells are about `cell` user units long
-    /// (the mesh's mean edge), at least one and at most 32 along the longer side.
+    /// (twice the mesh's mean edge), at least one and at most 12 along the longer side.
     pub fn size_for(img: &ImageItem, cell: f64) -> (u32, u32) {
         let [a, b, c, d, _, _] = img.transform.as_coeffs();
         let w = img.width * a.hypot(b);
@@ -127,8 +133,7 @@ impl ImageGrid {
 
     /// [`ImageGrid::pieces`] of the coarser grid made of every `step`-th grid line (`step`
     /// must divide both the columns and the rows; 1 is used where it does not): raster frames
-    /// draw the bound grid, the SVG outputs every second line of it (a quarter of the
-    /// elements).
+    /// draw the bound grid, the SVG outputs every [`RASTER_SPLIT`]-th line of it.
     pub fn pieces_every<'a>(
         &'a self,
         img: &'a ImageItem,
@@ -233,6 +238,7 @@ mod tests {
         assert_eq!(ImageGrid::size_for(&img, 10.0), (8, 4));
         assert_eq!(ImageGrid::size_for(&img, 1e9), (1, 1));
         assert_eq!(ImageGrid::size_for(&img, 0.01), (MAX_CELLS, MAX_CELLS / 2));
+        assert_eq!(ImageGrid::size_for(&img, 20.0), (4, 2));
         assert_eq!(ImageGrid::size_for(&img, f64::NAN), (1, 1));
     }
 

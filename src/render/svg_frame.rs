@@ -528,7 +528,7 @@ impl Document {
             3
         };
         body.open("g", Vec::new());
-        for piece in grid.pieces_every(img, 2) {
+        for piece in grid.pieces_every(img, crate::artwork::RASTER_SPLIT) {
             let clip = format!("{prefix}{}", self.next_id);
             self.next_id += 1;
             let tri = grown(piece.image, overlap, img.width, img.height);

@@ -3,7 +3,7 @@
 //! sampled bilinearly (nearest for `image-rendering: pixelated`) on premultiplied RGBA.
 //!
 //! The triangles are rasterized here rather than by one tiny-skia `fill_path` each: a grid has
-//! up to 2048 of them, and the per-call set-up of a shader pipeline cost more than the pixels.
+//! up to 4608 of them, and the per-call set-up of a shader pipeline cost more than the pixels.
 //! Coverage is decided at pixel centres with a tie rule that gives a pixel on an edge shared by
 //! two triangles to exactly one of them (each edge is evaluated from its endpoints in one fixed
 //! order, so both triangles compute the same number), so the triangles tile the image with no
