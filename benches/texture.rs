@@ -17,23 +17,6 @@ use std::hint::black_box;
 /// The picture of `fixtures/textures/turn` (144 × 112 px).
 const PICTURE: &[u8] = include_bytes!("../fixtures/textures/turn/picture.png");
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in data.chunks(3) {
-        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            out.push(if i <= c.len() {
-                A[(n >> (18 - 6 * i) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    out
-}
-
 /// A 512 × 512 drawing of the picture filling most of it under `transform`, its rectangle the
 /// boundary, its corner an anchor.
 fn drawing(transform: &str) -> String {
@@ -48,7 +31,7 @@ fn drawing(transform: &str) -> String {
             </g>
           </g>
         </svg>"##,
-        base64(PICTURE)
+        crmorph::base64::encode(PICTURE)
     )
 }
 

@@ -30,6 +30,7 @@
 
 pub mod artwork;
 pub mod auto;
+pub mod base64;
 pub mod budget;
 pub mod color;
 pub mod compatible;

@@ -106,7 +106,7 @@ pub fn image_svg(name: &str, bytes: &[u8], format: ImageFormat, limits: &Limits)
     let href = format!(
         "data:{};base64,{}",
         format.mime(),
-        crate::render::svg_frame::base64(bytes)
+        crate::base64::encode(bytes)
     );
     let rect = || {
         let (w, h) = (w as f64, h as f64);
@@ -576,10 +576,7 @@ mod tests {
             }
         }
         // The alpha resvg decodes is the file's own.
-        let href = format!(
-            "data:image/png;base64,{}",
-            crate::render::svg_frame::base64(&bytes)
-        );
+        let href = format!("data:image/png;base64,{}", crate::base64::encode(&bytes));
         let alpha = decode_alpha("disc.png", &href, w, h).unwrap();
         for y in 0..h {
             for x in 0..w {

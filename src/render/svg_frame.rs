@@ -512,7 +512,12 @@ impl Document {
         }
         a.push((
             "xlink:href",
-            format!("data:{};base64,{}", img.mime, base64(&img.data)).into(),
+            format!(
+                "data:{};base64,{}",
+                img.mime,
+                crate::base64::encode(&img.data)
+            )
+            .into(),
         ));
         defs.empty("image", a);
         // Half an output pixel in image pixels, at the image's rest placement.
@@ -578,7 +583,12 @@ impl Document {
         }
         a.push((
             "xlink:href",
-            format!("data:{};base64,{}", img.mime, base64(&img.data)).into(),
+            format!(
+                "data:{};base64,{}",
+                img.mime,
+                crate::base64::encode(&img.data)
+            )
+            .into(),
         ));
         body.empty("image", a);
     }
@@ -628,38 +638,26 @@ fn hex(c: Rgba) -> String {
     format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b)
 }
 
-/// Standard base64 with padding (RFC 4648), for embedded images.
-pub(crate) fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn base64_matches_rfc4648_vectors() {
-        assert_eq!(base64(b""), "");
-        assert_eq!(base64(b"f"), "Zg==");
-        assert_eq!(base64(b"fo"), "Zm8=");
-        assert_eq!(base64(b"foo"), "Zm9v");
-        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    fn clip_triangles_grow_inside_the_image_only() {
+        // The top-left triangle of a 10 × 10 cell in the image's corner: its top and left
+        // edges are the image's edge and stay; its diagonal moves out by 0.5.
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(0.0, 10.0),
+        ];
+        let g = grown(tri, 0.5, 100.0, 100.0);
+        assert_eq!(g[0], Point::new(0.0, 0.0));
+        assert!(g[1].y == 0.0 && g[2].x == 0.0);
+        // The diagonal x + y = 10 moved to x + y = 10 + 0.5·√2.
+        let want = 10.0 + 0.5 * std::f64::consts::SQRT_2;
+        assert!((g[1].x - want).abs() < 1e-12 && (g[2].y - want).abs() < 1e-12);
+        // Nothing to grow by: as it was.
+        assert_eq!(grown(tri, 0.0, 100.0, 100.0), tri);
     }
 }

@@ -31,7 +31,7 @@ fn png_data_url() -> String {
     }
     format!(
         "data:image/png;base64,{}",
-        svg_frame::base64(&p.encode_png().unwrap())
+        crate::base64::encode(&p.encode_png().unwrap())
     )
 }
 

@@ -33,7 +33,7 @@ pub(crate) fn decoded(img: &ImageItem) -> Option<std::sync::Arc<Pixmap>> {
              preserveAspectRatio=\"none\" image-rendering=\"optimizeSpeed\" \
              xlink:href=\"data:{};base64,{}\"/></svg>",
             img.mime,
-            super::svg_frame::base64(&img.data)
+            crate::base64::encode(&img.data)
         );
         let opts = crate::input::usvg_options(
             "<image>",

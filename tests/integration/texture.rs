@@ -26,23 +26,6 @@ fn solid(c: Color) -> Vec<u8> {
     encode_png(&p).unwrap()
 }
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in data.chunks(3) {
-        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            out.push(if i <= c.len() {
-                A[(n >> (18 - 6 * i) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    out
-}
-
 /// A 240 × 240 drawing of the picture under `transform` (a transform list), with its rectangle
 /// as the boundary and its top-left corner as an anchor (a rectangle alone does not say which
 /// of its half-turn-symmetric correspondences is meant).
@@ -58,7 +41,7 @@ fn drawing(png: &[u8], transform: &str) -> String {
             </g>
           </g>
         </svg>"##,
-        base64(png)
+        crmorph::base64::encode(png)
     )
 }
 
