@@ -304,6 +304,8 @@ struct Edge {
     c: f64,
     /// +1 when the triangle lies where `E > 0`, else −1.
     side: f64,
+    /// `−1/a` (0 for a horizontal edge): where a row crosses the edge, from its constant.
+    crossing: f64,
 }
 
 impl Edge {
@@ -321,6 +323,7 @@ impl Edge {
             b,
             c,
             side: if at_third > 0.0 { 1.0 } else { -1.0 },
+            crossing: if a == 0.0 { 0.0 } else { -1.0 / a },
         }
     }
 
@@ -378,7 +381,7 @@ fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler
             if e.a == 0.0 {
                 continue;
             }
-            let cross = (-row / e.a - 0.5).clamp(-1.0, target.width as f64 + 1.0) as i64;
+            let cross = (row * e.crossing - 0.5).clamp(-1.0, target.width as f64 + 1.0) as i64;
             if e.a * e.side > 0.0 {
                 l = l.max(cross - 1);
             } else {
