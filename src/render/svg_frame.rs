@@ -498,27 +498,9 @@ impl Document {
         defs: &mut Builder,
         body: &mut Builder,
     ) {
-        let s = |x: f64| Value::num(x, NumFormat::Sig);
         let id = format!("{prefix}{}", self.next_id);
         self.next_id += 1;
-        let mut a: Attrs = vec![
-            ("id", id.clone().into()),
-            ("width", s(img.width)),
-            ("height", s(img.height)),
-            ("preserveAspectRatio", "none".into()),
-        ];
-        if img.pixelated {
-            a.push(("image-rendering", "optimizeSpeed".into()));
-        }
-        a.push((
-            "xlink:href",
-            format!(
-                "data:{};base64,{}",
-                img.mime,
-                crate::base64::encode(&img.data)
-            )
-            .into(),
-        ));
+        let a = image_attrs(img, vec![("id", id.clone().into())], None);
         defs.empty("image", a);
         // Half an output pixel in image pixels, at the image's rest placement.
         let px = self.px_per_unit * img.transform.determinant().abs().sqrt();
@@ -571,27 +553,37 @@ impl Document {
 
     /// An image drawn with its own transform.
     fn plain_image(&self, img: &ImageItem, body: &mut Builder) {
-        let s = |x: f64| Value::num(x, NumFormat::Sig);
-        let mut a: Attrs = vec![
-            ("width", s(img.width)),
-            ("height", s(img.height)),
-            ("preserveAspectRatio", "none".into()),
-            ("transform", Value::Matrix(img.transform)),
-        ];
-        if img.pixelated {
-            a.push(("image-rendering", "optimizeSpeed".into()));
-        }
-        a.push((
-            "xlink:href",
-            format!(
-                "data:{};base64,{}",
-                img.mime,
-                crate::base64::encode(&img.data)
-            )
-            .into(),
-        ));
+        let a = image_attrs(img, Vec::new(), Some(img.transform));
         body.empty("image", a);
     }
+}
+
+/// The attributes of an `<image>` element of `img`: `lead` first, then its size, its
+/// placement `transform` if any, its sampling and its data.
+fn image_attrs(img: &ImageItem, lead: Attrs, transform: Option<Affine>) -> Attrs {
+    let s = |x: f64| Value::num(x, NumFormat::Sig);
+    let mut a = lead;
+    a.extend([
+        ("width", s(img.width)),
+        ("height", s(img.height)),
+        ("preserveAspectRatio", "none".into()),
+    ]);
+    if let Some(m) = transform {
+        a.push(("transform", Value::Matrix(m)));
+    }
+    if img.pixelated {
+        a.push(("image-rendering", "optimizeSpeed".into()));
+    }
+    a.push((
+        "xlink:href",
+        format!(
+            "data:{};base64,{}",
+            img.mime,
+            crate::base64::encode(&img.data)
+        )
+        .into(),
+    ));
+    a
 }
 
 /// Triangle `tri` (image pixels) with every edge that is not on the image's edge (`0 ≤ x ≤
