@@ -398,6 +398,7 @@ impl Binding {
             Resolution {
                 tolerance,
                 max_segment,
+                image_points: IMAGE_POINTS / count_images(&scene.root).max(1),
             },
         );
         let mut items = Vec::new();
@@ -459,8 +460,7 @@ fn bind_items(items: &[Item], locator: &Locator, tol: Resolution, out: &mut Vec<
                 // Cells twice as long as the mesh's mean edge (four times `max_segment`) for
                 // the SVG outputs, each split 4 × 4 for raster frames (`texture`).
                 let (columns, rows) = super::ImageGrid::size_for(img, 4.0 * tol.max_segment);
-                let split = super::texture::RASTER_SPLIT;
-                let (columns, rows) = (split * columns, split * rows);
+                let (columns, rows) = grid_within(columns, rows, tol.image_points);
                 let points = super::ImageGrid::rest_points(img, columns, rows);
                 let located = locator.for_item(&points);
                 out.push(BoundItem::Image(BoundImage {
@@ -509,6 +509,42 @@ pub(crate) fn cut_dashes(path: &BezPath, stroke: &super::Stroke, id: &str) -> Op
 struct Resolution {
     tolerance: f64,
     max_segment: f64,
+    /// Most texture-grid vertices one image may bind ([`IMAGE_POINTS`] shared by all).
+    image_points: usize,
+}
+
+/// Most texture-grid vertices one binding makes over all its images (about 16 MB of
+/// locations): a drawing of a hundred thousand tiny images gets a one-cell grid each instead
+/// of gigabytes of grids.
+const IMAGE_POINTS: usize = 500_000;
+
+/// Number of images in `g`, at any depth.
+fn count_images(g: &super::Group) -> usize {
+    g.children
+        .iter()
+        .map(|c| match c {
+            Item::Group(sub) => count_images(sub),
+            Item::Image(_) => 1,
+            Item::Path(_) => 0,
+        })
+        .sum()
+}
+
+/// The bound grid of an image whose SVG grid is `columns × rows` cells: split
+/// [`super::texture::RASTER_SPLIT`] times a side for raster frames when at most `budget`
+/// vertices allow it, else not split, else coarsened until they do (at least one cell).
+fn grid_within(columns: u32, rows: u32, budget: usize) -> (u32, u32) {
+    let points = |c: u32, r: u32| (c as usize + 1) * (r as usize + 1);
+    let split = super::texture::RASTER_SPLIT;
+    if points(split * columns, split * rows) <= budget {
+        return (split * columns, split * rows);
+    }
+    let (mut c, mut r) = (columns, rows);
+    while points(c, r) > budget && (c > 1 || r > 1) {
+        c = c.div_ceil(2);
+        r = r.div_ceil(2);
+    }
+    (c, r)
 }
 
 /// Most artwork points one binding makes (about 100 MB of locations). Artwork is cut to the
@@ -687,9 +723,15 @@ pub(crate) mod tests {
             Resolution {
                 tolerance: 0.1,
                 max_segment: 5.0,
+                image_points: IMAGE_POINTS,
             },
         );
         assert_eq!(bound.subpaths[0].len, bound.locations.len());
+        // Texture grids share a budget: split 4 × 4 when it allows, else plain, else coarser.
+        assert_eq!(grid_within(12, 9, IMAGE_POINTS), (48, 36));
+        assert_eq!(grid_within(12, 9, 200), (12, 9));
+        assert_eq!(grid_within(12, 9, 30), (3, 3));
+        assert_eq!(grid_within(12, 9, 1), (1, 1));
         assert!(
             bound.locations.len() >= 15,
             "{} points",
@@ -720,6 +762,7 @@ pub(crate) mod tests {
             Resolution {
                 tolerance: 0.1,
                 max_segment: 5.0,
+                image_points: IMAGE_POINTS,
             },
         );
         assert!(b.subpaths[0].closed);

@@ -133,7 +133,7 @@ impl ImageGrid {
 
     /// [`ImageGrid::pieces`] of the coarser grid made of every `step`-th grid line (`step`
     /// must divide both the columns and the rows; 1 is used where it does not): raster frames
-    /// draw the bound grid, the SVG outputs every [`RASTER_SPLIT`]-th line of it.
+    /// draw the bound grid, the SVG outputs every fourth line of it.
     pub fn pieces_every<'a>(
         &'a self,
         img: &'a ImageItem,
