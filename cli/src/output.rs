@@ -270,7 +270,11 @@ impl FramesDir {
         let name = file
             .file_name()
             .with_context(|| format!("{}: not a file name", file.display()))?;
-        std::fs::write(self.staging.path().join(name), bytes)
+        // Written holding the registry's lock: a signal that is removing the staging folder
+        // would otherwise race a frame appearing in it, and the folder's removal fail on a
+        // folder that is not empty (seen under load: the staging folder left behind).
+        let path = self.staging.path().join(name);
+        interrupt::atomically(|_| std::fs::write(&path, bytes))
             .with_context(|| format!("{}: cannot write", file.display()))?;
         self.names.push(name.to_owned());
         Ok(())
