@@ -114,9 +114,8 @@ pub(crate) fn draw_image(
         height: h as i64,
     };
     for piece in grid.pieces(img) {
-        // Output pixels → texels, from the undilated placement.
-        let px = piece.vertices.map(|k| placed[k]);
-        let Some(back) = affine_from(piece.image, px).and_then(invert) else {
+        // Output pixels → texels, from the piece's own (undilated) map.
+        let Some(back) = piece.transform().map(|m| to_px * m).and_then(invert) else {
             continue;
         };
         let tri = piece.vertices.map(|k| filled[k]);
@@ -191,15 +190,6 @@ fn dilated(placed: &[Point], border: &[usize]) -> Vec<Point> {
         }
     }
     out
-}
-
-/// The affine map taking triangle `from` to triangle `to`, `None` when `from` is degenerate.
-fn affine_from(from: [Point; 3], to: [Point; 3]) -> Option<Affine> {
-    let m =
-        |[a, b, c]: [Point; 3]| Affine::new([b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y, a.x, a.y]);
-    let f = m(from);
-    let det = f.determinant();
-    (det != 0.0 && det.is_finite()).then(|| m(to) * f.inverse())
 }
 
 /// The inverse of `m`, `None` when it is singular or not finite.
