@@ -20,6 +20,19 @@ pub fn orient2d(a: Point, b: Point, c: Point) -> f64 {
     )
 }
 
+/// Whether triangle `abc` is clockwise or collinear (exact predicate), or so thin that its
+/// cotangent weights would not be finite in floating point: twice its area at most `1e-13`
+/// times its longest edge squared. The composite mapping (§5) accepts no step with such a
+/// triangle, and the triangulation splits every triangle of curve vertices that would be one
+/// in the other drawing.
+pub(crate) fn inverted_or_sliver(a: Point, b: Point, c: Point) -> bool {
+    let longest = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    orient2d(a, b, c) <= 0.0 || (b - a).perp_dot(c - a) <= 1e-13 * longest
+}
+
 /// Signed area of triangle `abc` (plain floating point, positive counter-clockwise).
 pub fn triangle_area(a: Point, b: Point, c: Point) -> f64 {
     0.5 * (b - a).perp_dot(c - a)

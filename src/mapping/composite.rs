@@ -282,16 +282,11 @@ fn walk(
     Ok(current)
 }
 
-/// Whether a triangle is inverted (exact predicate) or so thin that its cotangent weights would not be
-/// finite in floating point: twice its area below `1e-13` times its longest edge squared. Such a
+/// Whether a triangle is inverted or a sliver ([`crate::geometry::inverted_or_sliver`]): such a
 /// mesh is not accepted as a step, because the next step's metric needs it.
 fn is_bad(t: &[u32; 3], points: &[Point]) -> bool {
     let [a, b, c] = t.map(|v| points[v as usize]);
-    let longest = (b - a)
-        .length_squared()
-        .max((c - b).length_squared())
-        .max((a - c).length_squared());
-    crate::geometry::orient2d(a, b, c) <= 0.0 || (b - a).perp_dot(c - a) <= 1e-13 * longest
+    crate::geometry::inverted_or_sliver(a, b, c)
 }
 
 const FIG16: &str = "the curves change their spatial relation between source and target, which the composite \

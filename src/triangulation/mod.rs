@@ -54,7 +54,11 @@ pub fn triangulate(
     let side = |p| side_of(p, from_target);
     validate_curves(pairs, tol, from_target)?;
     let curves: Vec<(&[Point], bool)> = pairs.iter().map(|p| (side(p), p.closed)).collect();
-    let (points, triangles) = cdt::build(&curves, tol).map_err(|e| match e {
+    let twins: Vec<Point> = pairs
+        .iter()
+        .flat_map(|p| side_of(p, !from_target).iter().copied())
+        .collect();
+    let (points, triangles) = cdt::build(&curves, &twins, tol).map_err(|e| match e {
         cdt::CdtError::Crossing(c) => Error::at(
             file,
             pairs[c].id.clone(),
