@@ -145,8 +145,117 @@ fn drawing(outline: &str, ex: f64, turn: f64, decimals: usize) -> String {
     )
 }
 
+/// One generated pair: a star, blob or worm (`kind` 0, 1, 2) morphing into the next, each with
+/// an eye, the target turned by `turn` degrees, written with `decimals` decimals.
+#[derive(Debug, Clone, Copy)]
+struct Generated {
+    kind: usize,
+    spikes: usize,
+    depth: f64,
+    wobble: f64,
+    bend: f64,
+    decimals: usize,
+    density: f64,
+    from_target: bool,
+    turn: f64,
+}
+
+/// Builds the pair `g` and checks its frames; `Err` says why it failed to map or which frames
+/// fold.
+fn generated_pair(g: Generated) -> Result<(), String> {
+    let Generated {
+        kind,
+        spikes,
+        depth,
+        wobble,
+        bend,
+        decimals,
+        density,
+        from_target,
+        turn,
+    } = g;
+    let star = radial(
+        2 * spikes,
+        |a| {
+            let k = (a * spikes as f64 / std::f64::consts::PI).round() as i64;
+            if k % 2 == 0 {
+                70.0
+            } else {
+                70.0 * (1.0 - depth)
+            }
+        },
+        false,
+        decimals,
+    );
+    let blob = radial(
+        12,
+        |a| 60.0 * (1.0 + wobble * (3.0 * a).sin()),
+        true,
+        decimals,
+    );
+    let w = worm(bend, decimals);
+    let (a, b) = [(&star, &blob), (&blob, &w), (&w, &star)][kind];
+    let (src, tgt) = (
+        drawing(a, 95.0, 0.0, decimals),
+        drawing(b, 105.0, turn, decimals),
+    );
+    let c = build_at(&src, &tgt, density, from_target).map_err(|e| e.to_string())?;
+    // The disc set-up refuses meshes with coincident vertices.
+    c.interpolator(Method::Disc).map_err(|e| e.to_string())?;
+    let bad = folded(&c, 32);
+    if bad.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("inverted triangles (t, count) {bad:?}"))
+    }
+}
+
+/// Pairs that random runs of the property below once found failing (each fails without the
+/// fixes it names), kept as cases of their own: a star's tip pinned flat against a straight run of the blob (no mapping can unfold a
+/// triangle of three curve vertices), and two refinement points of a worm a rounding error
+/// apart (a disc edge of zero length).
+#[test]
+fn generated_pairs_once_found_failing_now_morph() {
+    let case = |kind, spikes, depth, wobble, bend, decimals, density, turn| Generated {
+        kind,
+        spikes,
+        depth,
+        wobble,
+        bend,
+        decimals,
+        density,
+        from_target: false,
+        turn,
+    };
+    let cases = [
+        case(
+            0,
+            8,
+            0.49324702774485607,
+            0.07592304800422361,
+            0.5,
+            3,
+            1.9053426583866715,
+            -90.87675513730998,
+        ),
+        case(0, 8, 0.474, 0.021, 1.901, 3, 1.924, 109.63),
+        case(0, 8, 0.491, 0.027, 1.948, 2, 1.643, -170.73),
+        case(2, 5, 0.385, 0.010, 0.517, 1, 1.641, -38.69),
+        case(2, 6, 0.259, 0.202, 0.637, 1, 1.975, -87.49),
+    ];
+    let failed: Vec<String> = cases
+        .iter()
+        .filter_map(|&g| generated_pair(g).err().map(|e| format!("{g:?}: {e}")))
+        .collect();
+    assert!(failed.is_empty(), "{failed:#?}");
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(32))]
+    // 32 cases from the workspace's fixed seed (`.cargo/config.toml`); a long hunt sets
+    // PROPTEST_CASES and another PROPTEST_RNG_SEED.
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(32)
+    ))]
 
     /// Star → blob, blob → worm and worm → star pairs, each with an eye, the target turned by up
     /// to a half turn, written with 1–3 decimals, at densities in [0.5, 2], in both
@@ -163,17 +272,9 @@ proptest! {
         from_target in any::<bool>(),
         turn in -179.0f64..179.0,
     ) {
-        let star = radial(2 * spikes, |a| {
-            let k = (a * spikes as f64 / std::f64::consts::PI).round() as i64;
-            if k % 2 == 0 { 70.0 } else { 70.0 * (1.0 - depth) }
-        }, false, decimals);
-        let blob = radial(12, |a| 60.0 * (1.0 + wobble * (3.0 * a).sin()), true, decimals);
-        let w = worm(bend, decimals);
-        let (a, b) = [(&star, &blob), (&blob, &w), (&w, &star)][kind];
-        let (src, tgt) = (drawing(a, 95.0, 0.0, decimals), drawing(b, 105.0, turn, decimals));
-        let c = build_at(&src, &tgt, density, from_target);
-        prop_assert!(c.is_ok(), "{:?}", c.as_ref().err().map(|e| e.to_string()));
-        let bad = folded(&c.unwrap(), 32);
-        prop_assert!(bad.is_empty(), "inverted triangles (t, count) {:?}", bad);
+        let r = generated_pair(Generated {
+            kind, spikes, depth, wobble, bend, decimals, density, from_target, turn,
+        });
+        prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 }
