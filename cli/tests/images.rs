@@ -231,3 +231,28 @@ fn a_fully_transparent_image_is_a_one_line_error() {
     );
     assert_eq!(e.lines().count(), 1, "{e}");
 }
+
+#[test]
+fn a_damaged_picture_is_named_as_one() {
+    // Bytes that are no image under an image's name: the error says so, instead of calling the
+    // file a broken SVG.
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("scan.jpg");
+    std::fs::write(&bad, b"\x00\x01 not really a picture").unwrap();
+    let out = dir.path().join("x.gif");
+    let o = run(&[
+        os("morph"),
+        os(&bad),
+        os(&fixture("faces/source.png")),
+        os("-o"),
+        os(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("scan.jpg: is named like a JPEG image, but its bytes are neither"),
+        "{e}"
+    );
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(!out.exists());
+}

@@ -81,8 +81,36 @@ pub fn read_svg(path: &Path, name: &str, limits: &Limits) -> Result<String> {
         let svg = raster::image_svg(name, &bytes, format, limits)?;
         return Ok(prepare(name, &svg, limits)?.into_owned());
     }
+    if let Some(ext) = misnamed_image(path, &bytes) {
+        return Err(Error::input(
+            name,
+            format!(
+                "is named like a {ext} image, but its bytes are neither a PNG, JPEG, GIF or WebP \
+                 image nor SVG"
+            ),
+        ));
+    }
     let text = decode(name, &bytes, limits)?;
     Ok(prepare(name, &text, limits)?.into_owned())
+}
+
+/// The image extension of `path` (upper case: "PNG", "JPEG", …) when `bytes`, which are not
+/// a raster image, do not look like markup either (they do not open with `<` after a byte
+/// order mark and white space, nor with gzip's signature): a damaged or mislabelled picture,
+/// which would otherwise be reported as a broken SVG file.
+fn misnamed_image(path: &Path, bytes: &[u8]) -> Option<&'static str> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    let kind = match ext.as_str() {
+        "png" => "PNG",
+        "jpg" | "jpeg" => "JPEG",
+        "gif" => "GIF",
+        "webp" => "WebP",
+        _ => return None,
+    };
+    let body = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let first = body.iter().find(|b| !b.is_ascii_whitespace());
+    let markup = first == Some(&b'<') || bytes.starts_with(b"\x1f\x8b");
+    (!markup).then_some(kind)
 }
 
 /// The drawing of the raster image at `image` (named `image_name`) with the control geometry
