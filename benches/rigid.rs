@@ -121,5 +121,29 @@ fn fixtures(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, fixtures);
+/// Frame and set-up time of the disc method against mesh size, 1k to 1M vertices: the data of
+/// `docs/rigid-scaling.svg` (`python3 tools/plot/scaling.py` draws it from criterion's output).
+/// Run on its own: `cargo bench --bench rigid -- rigid-scaling --warm-up-time 1
+/// --measurement-time 3`.
+fn scaling(c: &mut Criterion) {
+    let mut g = c.benchmark_group("rigid-scaling");
+    g.sample_size(10);
+    for side in [32, 55, 100, 173, 317, 548, 1000] {
+        let (src, tris) = grid(side, side);
+        let tgt = target(&src, side as f64);
+        let n = src.len();
+        g.bench_with_input(BenchmarkId::new("setup", n), &n, |b, _| {
+            b.iter(|| Interpolator::new(Method::Disc, black_box(&src), &tgt, &tris).unwrap())
+        });
+        let it = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+        let mut ws = it.workspace();
+        let mut out = vec![Point::ZERO; n];
+        g.bench_with_input(BenchmarkId::new("frame", n), &n, |b, _| {
+            b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, fixtures, scaling);
 criterion_main!(benches);
