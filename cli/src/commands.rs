@@ -926,6 +926,6 @@ pub(crate) fn init(a: &InitArgs) -> Result<()> {
         ))
         .into());
     };
-    let svg = crmorph::input::raster::image_svg(&name, &bytes, format, &limits)?;
+    let svg = crmorph::input::raster::image_svg(&name, &bytes, format, "boundary", &limits)?;
     write_atomic(&a.output, svg.as_bytes())
 }

@@ -256,3 +256,43 @@ fn a_damaged_picture_is_named_as_one() {
     assert_eq!(e.lines().count(), 1, "{e}");
     assert!(!out.exists());
 }
+
+#[test]
+fn a_renamed_boundary_id_reaches_image_inputs() {
+    // `--boundary-id` names the boundary of drawings; an image drawing's traced boundary takes
+    // that name too, with controls or without. Before, the renamed boundary was not found and
+    // the pair fell back to automatic mode (no contours: a plain cross-fade).
+    let dir = tempfile::tempdir().unwrap();
+    let (s, t) = (fixture("faces/source.png"), fixture("faces/target.png"));
+    let (sc, tc) = (
+        fixture("faces/source-controls.svg"),
+        fixture("faces/target-controls.svg"),
+    );
+    let (plain, renamed) = (
+        dir.path().join("plain.json"),
+        dir.path().join("renamed.json"),
+    );
+    for extra in [vec![], vec![os("--controls"), os(&sc), os(&tc)]] {
+        for (out, id) in [(&plain, None), (&renamed, Some("outline"))] {
+            let mut args = vec![os("frame"), os(&s), os(&t), os("--at"), os("0.5")];
+            args.extend(extra.iter().copied());
+            if let Some(id) = id {
+                args.extend([os("--boundary-id"), os(id)]);
+            }
+            args.extend([os("-o"), os(out)]);
+            let o = run(&args);
+            assert!(o.status.success(), "{extra:?} {id:?}: {}", stderr(&o));
+        }
+        // The same mesh and frame; only the boundary curve's name differs.
+        let (a, b) = (
+            std::fs::read_to_string(&plain).unwrap(),
+            std::fs::read_to_string(&renamed).unwrap(),
+        );
+        assert!(a.contains(r#""name":"boundary""#), "{extra:?}");
+        assert_eq!(
+            b.replace(r#""name":"outline""#, r#""name":"boundary""#),
+            a,
+            "{extra:?}"
+        );
+    }
+}

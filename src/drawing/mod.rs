@@ -174,7 +174,7 @@ impl Drawing {
     /// ([`crate::input::read_svg`]).
     pub fn open(path: &std::path::Path, opts: &ReadOptions) -> Result<Self> {
         let file = crate::error::printable_path(path);
-        let text = crate::input::read_svg(path, &file, &opts.policy.limits)?;
+        let text = crate::input::read_svg(path, &file, &opts.ids.boundary, &opts.policy.limits)?;
         let dir = match path.parent() {
             Some(p) if p.as_os_str().is_empty() => Some(std::path::PathBuf::from(".")),
             p => p.map(std::path::Path::to_path_buf),

@@ -74,11 +74,11 @@ pub fn prepare<'a>(name: &str, text: &'a str, limits: &Limits) -> Result<Cow<'a,
 /// The text of the SVG file at `path` under the policy: read with [`read_file`], decoded with
 /// [`decode`] and made safe with [`prepare`]. `name` is how errors call it. A raster image
 /// (PNG, JPEG, GIF or WebP, by its signature) is read as the drawing that embeds it
-/// ([`raster::image_svg`]).
-pub fn read_svg(path: &Path, name: &str, limits: &Limits) -> Result<String> {
+/// ([`raster::image_svg`]), its boundary given the id `boundary_id`.
+pub fn read_svg(path: &Path, name: &str, boundary_id: &str, limits: &Limits) -> Result<String> {
     let bytes = read_file(path, name, limits)?;
     if let Some(format) = raster::sniff(&bytes) {
-        let svg = raster::image_svg(name, &bytes, format, limits)?;
+        let svg = raster::image_svg(name, &bytes, format, boundary_id, limits)?;
         return Ok(prepare(name, &svg, limits)?.into_owned());
     }
     if let Some(ext) = misnamed_image(path, &bytes) {
@@ -127,7 +127,7 @@ pub fn read_image_with_controls(
     let Some(format) = raster::sniff(&bytes) else {
         return Ok(None);
     };
-    let svg = raster::image_svg(image_name, &bytes, format, limits)?;
+    let svg = raster::image_svg(image_name, &bytes, format, boundary_id, limits)?;
     let controls_bytes = read_file(controls, controls_name, limits)?;
     if raster::sniff(&controls_bytes).is_some() {
         return Err(Error::input(

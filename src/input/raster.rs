@@ -82,15 +82,24 @@ const MIN_TOLERANCE_PX: f64 = 1.0;
 
 /// The opening tag of the guide group of an image drawing, where controls are merged.
 const CONTROLS_OPEN: &str = "<g id=\"controls\" style=\"display:none\">";
-/// How the traced boundary's element starts in an image drawing.
-const BOUNDARY_OPEN: &str = "    <path id=\"boundary\"";
+/// How the traced boundary's element, with id `boundary_id`, starts in an image drawing.
+fn boundary_open(boundary_id: &str) -> String {
+    format!("    <path id=\"{}\"", escape_attr(boundary_id))
+}
 
 /// The SVG text of the drawing for the image file `bytes` of `format` (see the module docs);
-/// `name` is how errors call the file.
+/// `name` is how errors call the file, `boundary_id` the id its boundary gets (`boundary`
+/// unless the user renamed it, `--boundary-id`).
 ///
 /// Errors: an image whose size cannot be read, that cannot be decoded, that is larger than
 /// [`Limits::pixels`], or that has no region of at least 16 half-opaque pixels.
-pub fn image_svg(name: &str, bytes: &[u8], format: ImageFormat, limits: &Limits) -> Result<String> {
+pub fn image_svg(
+    name: &str,
+    bytes: &[u8],
+    format: ImageFormat,
+    boundary_id: &str,
+    limits: &Limits,
+) -> Result<String> {
     let size = imagesize::blob_size(bytes)
         .map_err(|e| Error::input(name, format!("image: cannot read its size: {e}")))?;
     let (w, h) = (size.width as u64, size.height as u64);
@@ -136,9 +145,10 @@ pub fn image_svg(name: &str, bytes: &[u8], format: ImageFormat, limits: &Limits)
          \x20 <image id=\"image\" width=\"{w}\" height=\"{h}\" preserveAspectRatio=\"none\" \
          xlink:href=\"{href}\"/>\n\
          \x20 {CONTROLS_OPEN}\n\
-         {BOUNDARY_OPEN} fill=\"none\" stroke=\"#ff00ff\" d=\"{}\"/>\n\
+         {} fill=\"none\" stroke=\"#ff00ff\" d=\"{}\"/>\n\
          \x20 </g>\n\
          </svg>\n",
+        boundary_open(boundary_id),
         path_data(&boundary)
     ))
 }
@@ -170,7 +180,7 @@ pub fn merge_controls(
     let mut rest = &image_svg[insert_at..];
     if has_boundary {
         // Drop the traced boundary: the controls' own replaces it.
-        if let Some(start) = rest.find(BOUNDARY_OPEN) {
+        if let Some(start) = rest.find(&boundary_open(boundary_id)) {
             if let Some(len) = rest[start..].find("/>\n") {
                 out.push_str(&rest[..start]);
                 rest = &rest[start + len + 3..];
@@ -517,7 +527,7 @@ mod tests {
 
     fn drawing(name: &str, bytes: &[u8]) -> Result<Drawing> {
         let format = sniff(bytes).unwrap();
-        let svg = image_svg(name, bytes, format, &Limits::default())?;
+        let svg = image_svg(name, bytes, format, "boundary", &Limits::default())?;
         Drawing::from_str(name, &svg, &ReadOptions::default())
     }
 
@@ -545,7 +555,9 @@ mod tests {
         assert_eq!(d.view_box, Some((Point::ZERO, Point::new(40.0, 30.0))));
         assert!(d.svg.contains("data:image/png;base64,"));
         // Same input, same bytes.
-        let svg = |b: &[u8]| image_svg("o.png", b, ImageFormat::Png, &Limits::default()).unwrap();
+        let svg = |b: &[u8]| {
+            image_svg("o.png", b, ImageFormat::Png, "boundary", &Limits::default()).unwrap()
+        };
         assert_eq!(svg(&bytes), svg(&bytes));
     }
 
@@ -619,6 +631,7 @@ mod tests {
             "bad.png",
             b"\x89PNG\r\n\x1a\nnonsense",
             ImageFormat::Png,
+            "boundary",
             &Limits::default(),
         )
         .unwrap_err()
@@ -628,7 +641,7 @@ mod tests {
             pixels: 100,
             ..Limits::default()
         };
-        let e = image_svg("big.png", &clear, ImageFormat::Png, &small)
+        let e = image_svg("big.png", &clear, ImageFormat::Png, "boundary", &small)
             .unwrap_err()
             .to_string();
         assert!(e.contains("over the limit of 100 pixels per frame"), "{e}");
@@ -638,7 +651,14 @@ mod tests {
     #[test]
     fn controls_are_merged_into_the_guides_and_may_replace_the_boundary() {
         let bytes = png(100, 80, |_, _| [10, 20, 30, 255]);
-        let svg = image_svg("a.png", &bytes, ImageFormat::Png, &Limits::default()).unwrap();
+        let svg = image_svg(
+            "a.png",
+            &bytes,
+            ImageFormat::Png,
+            "boundary",
+            &Limits::default(),
+        )
+        .unwrap();
         let controls = r#"<?xml version="1.0"?>
 <svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" viewBox="0 0 100 80">
   <g inkscape:groupmode="layer" transform="translate(10 0)">
