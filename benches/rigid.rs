@@ -122,7 +122,7 @@ fn fixtures(c: &mut Criterion) {
 }
 
 /// Frame and set-up time of the disc method against mesh size, 1k to 1M vertices: the data of
-/// `docs/rigid-scaling.svg` (`python3 tools/plot/scaling.py` draws it from criterion's output).
+/// `docs/rigid-scaling.svg` (`python3 tools/bench/scaling.py` draws it from criterion's output).
 /// Run on its own: `cargo bench --bench rigid -- rigid-scaling --warm-up-time 1
 /// --measurement-time 3`.
 fn scaling(c: &mut Criterion) {

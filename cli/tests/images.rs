@@ -27,6 +27,15 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The error a run that should fail printed, after checking its exit status (`code`) and that
+/// it is one line.
+fn one_line_error(o: &Output, code: i32) -> String {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(code), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+    e
+}
+
 #[test]
 fn a_png_pair_morphs_into_a_gif() {
     let dir = tempfile::tempdir().unwrap();
@@ -200,13 +209,11 @@ fn controls_on_an_svg_input_is_a_usage_error() {
         os("-o"),
         os(&out),
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    let e = stderr(&o);
+    let e = one_line_error(&o, 2);
     assert!(
         e.starts_with("error: --controls:") && e.contains("is not an image"),
         "{e}"
     );
-    assert_eq!(e.lines().count(), 1, "{e}");
     assert!(!out.exists());
 }
 
@@ -223,13 +230,11 @@ fn a_fully_transparent_image_is_a_one_line_error() {
     std::fs::write(&clear, &bytes).unwrap();
     let out = dir.path().join("x.svg");
     let o = run(&[os("init"), os(&clear), os("-o"), os(&out)]);
-    assert_eq!(o.status.code(), Some(1));
-    let e = stderr(&o);
+    let e = one_line_error(&o, 1);
     assert!(
         e.starts_with("error: ") && e.contains("clear.png: image: no opaque pixels"),
         "{e}"
     );
-    assert_eq!(e.lines().count(), 1, "{e}");
 }
 
 #[test]
@@ -247,13 +252,11 @@ fn a_damaged_picture_is_named_as_one() {
         os("-o"),
         os(&out),
     ]);
-    assert_eq!(o.status.code(), Some(1));
-    let e = stderr(&o);
+    let e = one_line_error(&o, 1);
     assert!(
         e.contains("scan.jpg: is named like a JPEG image, but its bytes are neither"),
         "{e}"
     );
-    assert_eq!(e.lines().count(), 1, "{e}");
     assert!(!out.exists());
 }
 

@@ -330,7 +330,7 @@ fn split_chords(
         let (pa, pb) = (xy(cdt.vertex(a).position()), xy(cdt.vertex(b).position()));
         let (m, half) = ((pa + pb) * 0.5, 0.5 * pa.distance(pb));
         if !clear_of_others(cdt, m, half, (pa, pb)) {
-            unclear.push([a, b]);
+            unclear.push(([a, b], pa, pb, m, half));
         } else if insert_free(cdt, m) {
             inserted += 1;
         }
@@ -339,12 +339,10 @@ fn split_chords(
     // the new vertex goes on the side of the chord away from the ear.
     let inside = inside_faces(cdt, boundary_edges)?;
     let mut spots: Vec<Point> = Vec::new();
-    for [a, b] in unclear {
+    for ([a, b], pa, pb, m, half) in unclear {
         let Some(e) = cdt.get_edge_from_neighbors(a, b) else {
             continue;
         };
-        let (pa, pb) = (xy(cdt.vertex(a).position()), xy(cdt.vertex(b).position()));
-        let (m, half) = ((pa + pb) * 0.5, 0.5 * pa.distance(pb));
         for (f, other) in [(e.face(), e.rev().face()), (e.rev().face(), e.face())] {
             let (Some(f), Some(other)) = (f.as_inner(), other.as_inner()) else {
                 continue;

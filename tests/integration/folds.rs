@@ -163,43 +163,32 @@ struct Generated {
 /// Builds the pair `g` and checks its frames; `Err` says why it failed to map or which frames
 /// fold.
 fn generated_pair(g: Generated) -> Result<(), String> {
-    let Generated {
-        kind,
-        spikes,
-        depth,
-        wobble,
-        bend,
-        decimals,
-        density,
-        from_target,
-        turn,
-    } = g;
     let star = radial(
-        2 * spikes,
+        2 * g.spikes,
         |a| {
-            let k = (a * spikes as f64 / std::f64::consts::PI).round() as i64;
+            let k = (a * g.spikes as f64 / std::f64::consts::PI).round() as i64;
             if k % 2 == 0 {
                 70.0
             } else {
-                70.0 * (1.0 - depth)
+                70.0 * (1.0 - g.depth)
             }
         },
         false,
-        decimals,
+        g.decimals,
     );
     let blob = radial(
         12,
-        |a| 60.0 * (1.0 + wobble * (3.0 * a).sin()),
+        |a| 60.0 * (1.0 + g.wobble * (3.0 * a).sin()),
         true,
-        decimals,
+        g.decimals,
     );
-    let w = worm(bend, decimals);
-    let (a, b) = [(&star, &blob), (&blob, &w), (&w, &star)][kind];
+    let w = worm(g.bend, g.decimals);
+    let (a, b) = [(&star, &blob), (&blob, &w), (&w, &star)][g.kind];
     let (src, tgt) = (
-        drawing(a, 95.0, 0.0, decimals),
-        drawing(b, 105.0, turn, decimals),
+        drawing(a, 95.0, 0.0, g.decimals),
+        drawing(b, 105.0, g.turn, g.decimals),
     );
-    let c = build_at(&src, &tgt, density, from_target).map_err(|e| e.to_string())?;
+    let c = build_at(&src, &tgt, g.density, g.from_target).map_err(|e| e.to_string())?;
     // The disc set-up refuses meshes with coincident vertices.
     c.interpolator(Method::Disc).map_err(|e| e.to_string())?;
     let bad = folded(&c, 32);

@@ -5,22 +5,17 @@ sample, from the criterion output of `cargo bench --bench auto` (criterion's med
 Usage: python3 tools/bench/auto-setup.py [target/criterion]
 """
 
-import json
 import sys
 from pathlib import Path
+
+from criterion import medians
 
 
 def main() -> None:
     root = Path(sys.argv[1] if len(sys.argv) > 1 else "target/criterion") / "auto-setup"
-    times = []
-    for d in sorted(root.iterdir()) if root.is_dir() else []:
-        est = d / "new" / "estimates.json"
-        if est.is_file():
-            ns = json.loads(est.read_text())["median"]["point_estimate"]
-            times.append((ns * 1e-6, d.name))
+    times = sorted((t * 1e3, name) for name, t in medians(root))
     if not times:
         sys.exit(f"no auto-setup results under {root}: run `cargo bench --bench auto` first")
-    times.sort()
     ms = [t for t, _ in times]
 
     def pct(p: float) -> float:

@@ -2,27 +2,21 @@
 """Draws docs/rigid-scaling.svg, disc set-up and frame time against vertices (log-log), from the
 criterion output of `cargo bench --bench rigid -- rigid-scaling`, and prints the table.
 
-Usage: python3 tools/plot/scaling.py [target/criterion] [docs/rigid-scaling.svg]
+Usage: python3 tools/bench/scaling.py [target/criterion] [docs/rigid-scaling.svg]
 
 Plain SVG written by hand, so the plot needs nothing beyond Python's standard library.
 """
 
-import json
 import math
 import sys
 from pathlib import Path
 
+from criterion import medians
 
-def medians(root: Path, what: str) -> list[tuple[int, float]]:
+
+def sizes(root: Path, what: str) -> list[tuple[int, float]]:
     """(vertices, median seconds) for every size criterion measured of `what`."""
-    out = []
-    base = root / "rigid-scaling" / what
-    for d in sorted(base.iterdir()) if base.is_dir() else []:
-        est = d / "new" / "estimates.json"
-        if d.name.isdigit() and est.is_file():
-            ns = json.loads(est.read_text())["median"]["point_estimate"]
-            out.append((int(d.name), ns * 1e-9))
-    return sorted(out)
+    return sorted((int(n), t) for n, t in medians(root / "rigid-scaling" / what) if n.isdigit())
 
 
 def nice(seconds: float) -> str:
@@ -36,7 +30,7 @@ def nice(seconds: float) -> str:
 def main() -> None:
     root = Path(sys.argv[1] if len(sys.argv) > 1 else "target/criterion")
     dest = Path(sys.argv[2] if len(sys.argv) > 2 else "docs/rigid-scaling.svg")
-    series = {"frame": medians(root, "frame"), "set-up": medians(root, "setup")}
+    series = {"frame": sizes(root, "frame"), "set-up": sizes(root, "setup")}
     if not series["frame"]:
         sys.exit(f"no rigid-scaling results under {root}: run the bench first")
 
