@@ -4,10 +4,11 @@
 //!
 //! The triangles are rasterized here rather than by one tiny-skia `fill_path` each: a grid has
 //! up to 4608 of them, and the per-call set-up of a shader pipeline cost more than the pixels.
-//! Coverage is decided at pixel centres with a tie rule that gives a pixel on an edge shared by
-//! two triangles to exactly one of them (each edge is evaluated from its endpoints in one fixed
-//! order, so both triangles compute the same number), so the triangles tile the image with no
-//! crack and no pixel drawn twice: a solid texture stays solid. The image's own edge is
+//! Coverage is decided at pixel centres in exact integer arithmetic (corners snapped to 1/256
+//! pixel) with a top-left rule that gives a pixel on an edge shared by two triangles to
+//! exactly one of them ([`covered_runs`]), so the triangles tile the image with no crack and
+//! no pixel drawn twice: a solid texture stays solid. Each row's run of pixels then steps
+//! through the texture in fixed point ([`Sampler::run`]). The image's own edge is
 //! antialiased instead: the grid is drawn with its outer vertices pushed out by
 //! [`BORDER_DILATION`] pixels (the texture's edge texels extended), then composited through an
 //! antialiased mask of the undilated outline.
@@ -202,6 +203,11 @@ fn invert(m: Affine) -> Option<Affine> {
     inv.as_coeffs().iter().all(|c| c.is_finite()).then_some(inv)
 }
 
+/// Fractional bits of the fixed-point texel coordinates a run of pixels steps through.
+const FRAC: u32 = 16;
+/// One texel in fixed point.
+const ONE: i64 = 1 << FRAC;
+
 /// Premultiplied RGBA8 texels, sampled with clamping to the edge.
 struct Sampler<'a> {
     texels: &'a [u8],
@@ -213,9 +219,9 @@ struct Sampler<'a> {
 impl Sampler<'_> {
     /// Texel `(x, y)` clamped to the image, packed as in memory (RGBA, little-endian).
     #[inline(always)]
-    fn texel(&self, x: i32, y: i32) -> u32 {
-        let x = x.clamp(0, self.width - 1);
-        let y = y.clamp(0, self.height - 1);
+    fn texel(&self, x: i64, y: i64) -> u32 {
+        let x = x.clamp(0, self.width as i64 - 1);
+        let y = y.clamp(0, self.height as i64 - 1);
         let i = 4 * (y as usize * self.width as usize + x as usize);
         match self.texels.get(i..i + 4) {
             Some(&[r, g, b, a]) => u32::from_le_bytes([r, g, b, a]),
@@ -223,10 +229,9 @@ impl Sampler<'_> {
         }
     }
 
-    /// Two horizontally adjacent texels `(x, y)` and `(x + 1, y)`, both inside the image.
+    /// Two horizontally adjacent texels from byte offset `i`, as a pair of packed pixels.
     #[inline(always)]
-    fn pair(&self, x: i32, y: i32) -> (u32, u32) {
-        let i = 4 * (y as usize * self.width as usize + x as usize);
+    fn pair(&self, i: usize) -> (u32, u32) {
         match self.texels.get(i..i + 8) {
             Some(&[r0, g0, b0, a0, r1, g1, b1, a1]) => (
                 u32::from_le_bytes([r0, g0, b0, a0]),
@@ -236,44 +241,74 @@ impl Sampler<'_> {
         }
     }
 
-    /// The colour at texel coordinates `(u, v)` (texel centres at half integers), packed:
-    /// bilinear with 8-bit weights, two channels at a time in 16-bit lanes, or the texel under
-    /// it when pixelated.
+    /// Fills `out` (packed RGBA8 pixels of one row) with the colours at fixed-point texel
+    /// coordinates `(fu, fv) + k·(su, sv)` ([`FRAC`] bits) for its pixels `k`, the texel
+    /// centres at half integers already subtracted for bilinear sampling: bilinear with 8-bit
+    /// weights, two channels at a time in 16-bit lanes, or the texel under each when
+    /// pixelated. A run whose every bilinear footprint lies inside the image (checked at its
+    /// two ends: the coordinates are linear along it) skips the clamping.
     #[inline(always)]
-    fn sample(&self, u: f32, v: f32) -> u32 {
-        // Far outside the image every coordinate clamps alike; this keeps the casts in range
-        // and makes truncation a floor (the shifted values are positive).
-        const SHIFT: f32 = 16.0;
-        let u = u.clamp(-8.0, self.width as f32 + 8.0);
-        let v = v.clamp(-8.0, self.height as f32 + 8.0);
-        if self.nearest {
-            let x = (u + SHIFT) as i32 - SHIFT as i32;
-            let y = (v + SHIFT) as i32 - SHIFT as i32;
-            return self.texel(x, y);
+    fn run(&self, mut fu: i64, mut fv: i64, su: i64, sv: i64, out: &mut [u8]) {
+        let n = (out.len() / 4) as i64;
+        if n == 0 {
+            return;
         }
-        let (x, y) = (u - 0.5 + SHIFT, v - 0.5 + SHIFT);
-        let (xi, yi) = (x as i32, y as i32);
-        let fx = ((x - xi as f32) * 256.0) as u32;
-        let fy = ((y - yi as f32) * 256.0) as u32;
-        let (x0, y0) = (xi - SHIFT as i32, yi - SHIFT as i32);
-        let ((a, b), (c, d)) = if x0 >= 0 && y0 >= 0 && x0 + 1 < self.width && y0 + 1 < self.height
+        if self.nearest {
+            for px in out.chunks_exact_mut(4) {
+                px.copy_from_slice(&self.texel(fu >> FRAC, fv >> FRAC).to_le_bytes());
+                fu += su;
+                fv += sv;
+            }
+            return;
+        }
+        let (eu, ev) = (fu + su * (n - 1), fv + sv * (n - 1));
+        let inside = |lo: i64, hi: i64, size: i32| lo >= 0 && hi < (size as i64 - 1) << FRAC;
+        let stride = 4 * self.width as usize;
+        if inside(fu.min(eu), fu.max(eu), self.width) && inside(fv.min(ev), fv.max(ev), self.height)
         {
-            (self.pair(x0, y0), self.pair(x0, y0 + 1))
-        } else {
-            (
-                (self.texel(x0, y0), self.texel(x0 + 1, y0)),
-                (self.texel(x0, y0 + 1), self.texel(x0 + 1, y0 + 1)),
-            )
-        };
-        let lerp = |p: u32, q: u32, f: u32| -> u32 {
-            const LANES: u32 = 0x00ff_00ff;
-            let (g, h) = (256 - f, f);
-            let even = ((p & LANES) * g + (q & LANES) * h + 0x0080_0080) >> 8;
-            let odd = (((p >> 8) & LANES) * g + ((q >> 8) & LANES) * h + 0x0080_0080) >> 8;
-            (even & LANES) | ((odd & LANES) << 8)
-        };
-        lerp(lerp(a, b, fx), lerp(c, d, fx), fy)
+            for px in out.chunks_exact_mut(4) {
+                let (x, y) = ((fu >> FRAC) as usize, (fv >> FRAC) as usize);
+                let (fx, fy) = weights(fu, fv);
+                let i = 4 * x + stride * y;
+                let (a, b) = self.pair(i);
+                let (c, d) = self.pair(i + stride);
+                px.copy_from_slice(&bilinear(a, b, c, d, fx, fy).to_le_bytes());
+                fu += su;
+                fv += sv;
+            }
+            return;
+        }
+        for px in out.chunks_exact_mut(4) {
+            let (x, y) = (fu >> FRAC, fv >> FRAC);
+            let (fx, fy) = weights(fu, fv);
+            let (a, b) = (self.texel(x, y), self.texel(x + 1, y));
+            let (c, d) = (self.texel(x, y + 1), self.texel(x + 1, y + 1));
+            px.copy_from_slice(&bilinear(a, b, c, d, fx, fy).to_le_bytes());
+            fu += su;
+            fv += sv;
+        }
     }
+}
+
+/// The 8-bit bilinear weights of fixed-point coordinates (their fractions' top bits).
+#[inline(always)]
+fn weights(fu: i64, fv: i64) -> (u32, u32) {
+    const SHIFT: u32 = FRAC - 8;
+    (((fu >> SHIFT) & 0xff) as u32, ((fv >> SHIFT) & 0xff) as u32)
+}
+
+/// The bilinear mix of packed texels `a b` (top row) and `c d` with 8-bit weights `fx`, `fy`
+/// (toward `b`/`d` and `c`/`d`), two channels at a time in 16-bit lanes.
+#[inline(always)]
+fn bilinear(a: u32, b: u32, c: u32, d: u32, fx: u32, fy: u32) -> u32 {
+    let lerp = |p: u32, q: u32, f: u32| -> u32 {
+        const LANES: u32 = 0x00ff_00ff;
+        let (g, h) = (256 - f, f);
+        let even = ((p & LANES) * g + (q & LANES) * h + 0x0080_0080) >> 8;
+        let odd = (((p >> 8) & LANES) * g + ((q >> 8) & LANES) * h + 0x0080_0080) >> 8;
+        (even & LANES) | ((odd & LANES) << 8)
+    };
+    lerp(lerp(a, b, fx), lerp(c, d, fx), fy)
 }
 
 /// The layer the triangles are filled into (premultiplied RGBA8, replaced, not blended:
@@ -284,117 +319,105 @@ struct Target<'a> {
     height: i64,
 }
 
-/// The edge function of the line through two corners, `E(x, y) = a·x + b·y + c`, its
-/// coefficients computed from the endpoints in one fixed (lexicographic) order, so that the
-/// two triangles sharing an edge compute bit-identical values at every pixel centre.
-#[derive(Clone, Copy)]
-struct Edge {
-    a: f64,
-    b: f64,
-    c: f64,
-    /// +1 when the triangle lies where `E > 0`, else −1.
-    side: f64,
-    /// `−1/a` (0 for a horizontal edge): where a row crosses the edge, from its constant.
-    crossing: f64,
+/// Sub-pixel bits of the snapped triangle corners: a corner is rounded to 1/256 pixel, so
+/// coverage is decided in exact integer arithmetic.
+const SUB: u32 = 8;
+/// How far outside the pixmap, in pixels, a corner may lie before it is clamped (keeps every
+/// edge-function product inside `i64`: corners below 2³⁰ sub-pixels, products below 2⁶²).
+const REACH: f64 = (1 << 21) as f64;
+
+/// A triangle corner snapped to the sub-pixel grid.
+fn snap(p: Point) -> (i64, i64) {
+    let s = |x: f64| (x.clamp(-REACH, REACH) * (1 << SUB) as f64).round() as i64;
+    (s(p.x), s(p.y))
 }
 
-impl Edge {
-    fn new(p: Point, q: Point, third: Point) -> Edge {
-        let (p, q) = if (p.x, p.y) <= (q.x, q.y) {
-            (p, q)
-        } else {
-            (q, p)
-        };
-        let (dx, dy) = (q.x - p.x, q.y - p.y);
-        let (a, b, c) = (-dy, dx, dy * p.x - dx * p.y);
-        let at_third = a * third.x + (b * third.y + c);
-        Edge {
-            a,
-            b,
-            c,
-            side: if at_third > 0.0 { 1.0 } else { -1.0 },
-            crossing: if a == 0.0 { 0.0 } else { -1.0 / a },
-        }
-    }
-
-    /// The part of `E` that is constant along pixel row `y` (centre `py`).
-    #[inline(always)]
-    fn row(&self, py: f64) -> f64 {
-        self.b * py + self.c
-    }
-
-    /// Whether the pixel centre at `px` of a row with constant `row` is on the triangle's
-    /// side: strictly, or exactly on the edge when the triangle's side is the positive one
-    /// (the tie goes to one of the two triangles sharing the edge, never both, never neither).
-    #[inline(always)]
-    fn holds(&self, px: f64, row: f64) -> bool {
-        let v = (self.a * px + row) * self.side;
-        v > 0.0 || (v == 0.0 && self.side > 0.0)
-    }
+/// A real number as fixed point with [`FRAC`] bits (truncated; the error is far below a
+/// bilinear weight's 1/256).
+#[inline(always)]
+fn fixed(x: f64) -> i64 {
+    (x.clamp(-1e9, 1e9) * ONE as f64) as i64
 }
 
-/// Fills triangle `tri` (output pixels) with texels at `to_texel` of each pixel centre.
-///
-/// A pixel is inside when its centre is on the triangle's side of all three edges
-/// ([`Edge::holds`]). That decision is made exactly for the pixels at the two ends of each
-/// row's run (found from the run's approximate ends); the pixels between are inside because
-/// the triangle is convex.
+/// Fills triangle `tri` (output pixels) with texels at `to_texel` of each pixel centre: each
+/// row's run of covered pixels ([`covered_runs`]) sampled by [`Sampler::run`].
 fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler: &Sampler) {
-    let [a, b, c] = tri;
-    if crate::geometry::orient2d(a, b, c) == 0.0 {
+    let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
+    let centre = if sampler.nearest { 0.0 } else { 0.5 };
+    let (su, sv) = (fixed(m0), fixed(m1));
+    covered_runs(tri, target.width, target.height, |y, l, r| {
+        let (px, py) = (l as f64 + 0.5, y as f64 + 0.5);
+        let u = m0 * px + m2 * py + m4 - centre;
+        let v = m1 * px + m3 * py + m5 - centre;
+        let row = (y * target.width) as usize;
+        let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize)];
+        sampler.run(fixed(u), fixed(v), su, sv, out);
+    });
+}
+
+/// Hands every row `y` of a `width × height` pixmap that triangle `tri` covers to
+/// `run(y, l, r)`, with its covered pixels `l..r` (contiguous: the triangle is convex).
+///
+/// Coverage is decided at pixel centres with integer edge functions of the corners snapped to
+/// 1/256 pixel, and a top-left rule for centres exactly on an edge: an edge shared by two
+/// triangles is the same integer line in both, and it is "top-left" in exactly one of them,
+/// so a centre on it goes to one triangle, never both, never neither. Triangles that tile a
+/// region therefore cover each of its pixels exactly once: no crack, no pixel drawn twice.
+fn covered_runs(tri: [Point; 3], width: i64, height: i64, mut run: impl FnMut(i64, i64, i64)) {
+    let [mut a, b, mut c] = tri.map(snap);
+    let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+    if cross == 0 {
         return;
     }
-    let edges = [Edge::new(a, b, c), Edge::new(b, c, a), Edge::new(c, a, b)];
-    let lo = a.min(b).min(c);
-    let hi = a.max(b).max(c);
-    // Pixel ranges a pixel wider than the bounding box (truncation is not a floor below 0);
-    // the exact tests trim them.
-    let x0 = ((lo.x - 0.5) as i64).max(0);
-    let x1 = ((hi.x - 0.5) as i64 + 1).min(target.width - 1);
-    let y0 = ((lo.y - 0.5) as i64).max(0);
-    let y1 = ((hi.y - 0.5) as i64 + 1).min(target.height - 1);
+    // Counter-clockwise in y-down pixels (negative area), so inside is E ≥ 0 below.
+    if cross > 0 {
+        std::mem::swap(&mut a, &mut c);
+    }
+    let half = 1i64 << (SUB - 1);
+    let unit = 1i64 << SUB;
+    // Pixel range of the bounding box (centres at k + ½).
+    let first = |lo: i64| (lo - half + unit - 1).div_euclid(unit);
+    let last = |hi: i64| (hi - half).div_euclid(unit);
+    let x0 = first(a.0.min(b.0).min(c.0)).max(0);
+    let x1 = last(a.0.max(b.0).max(c.0)).min(width - 1);
+    let y0 = first(a.1.min(b.1).min(c.1)).max(0);
+    let y1 = last(a.1.max(b.1).max(c.1)).min(height - 1);
     if x0 > x1 || y0 > y1 {
         return;
     }
-    let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
-    let (du, dv) = (m0 as f32, m1 as f32);
+    // Edge p → q: E(x, y) = (q.y − p.y)·(x − p.x) − (q.x − p.x)·(y − p.y), ≥ 0 inside; a
+    // top or left edge keeps its zeros, the others drop them (bias −1). Per pixel to the
+    // right E grows by (q.y − p.y)·256, per row down by −(q.x − p.x)·256.
+    let edge = |p: (i64, i64), q: (i64, i64)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let top_left = (dy == 0 && dx > 0) || dy < 0;
+        let at = move |x: i64, y: i64| dy * (x - p.0) - dx * (y - p.1) - i64::from(!top_left);
+        (at, dy * unit, -dx * unit)
+    };
+    let edges = [edge(a, b), edge(b, c), edge(c, a)];
+    let (cx, cy) = (x0 * unit + half, y0 * unit + half);
+    let mut row_start = edges.map(|(at, _, _)| at(cx, cy));
     for y in y0..=y1 {
-        let py = y as f64 + 0.5;
-        let rows = edges.map(|e| e.row(py));
-        let inside = |x: i64| {
-            let px = x as f64 + 0.5;
-            (0..3).all(|k| edges[k].holds(px, rows[k]))
-        };
-        // The run's approximate ends: where the row crosses the edges, a pixel wider.
-        let (mut l, mut r) = (x0, x1);
-        for (e, row) in edges.iter().zip(rows) {
-            if e.a == 0.0 {
-                continue;
+        let mut e = row_start;
+        let mut l = x0;
+        while l <= x1 && e.iter().any(|&v| v < 0) {
+            for k in 0..3 {
+                e[k] += edges[k].1;
             }
-            let cross = (row * e.crossing - 0.5).clamp(-1.0, target.width as f64 + 1.0) as i64;
-            if e.a * e.side > 0.0 {
-                l = l.max(cross - 1);
-            } else {
-                r = r.min(cross + 1);
-            }
-        }
-        while l <= r && !inside(l) {
             l += 1;
         }
-        while r >= l && !inside(r) {
-            r -= 1;
+        let mut r = l;
+        while r <= x1 && e.iter().all(|&v| v >= 0) {
+            for k in 0..3 {
+                e[k] += edges[k].1;
+            }
+            r += 1;
         }
-        if l > r {
-            continue;
+        if l < r {
+            run(y, l, r);
         }
-        let px = l as f64 + 0.5;
-        let u = (m0 * px + m2 * py + m4) as f32;
-        let v = (m1 * px + m3 * py + m5) as f32;
-        let row = (y * target.width) as usize;
-        let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize + 1)];
-        for (k, px) in out.chunks_exact_mut(4).enumerate() {
-            let k = k as f32;
-            px.copy_from_slice(&sampler.sample(u + du * k, v + dv * k).to_le_bytes());
+        for k in 0..3 {
+            row_start[k] += edges[k].2;
         }
     }
 }
@@ -427,4 +450,121 @@ pub(crate) fn has_warped_image(g: &crate::artwork::Group) -> bool {
         crate::artwork::Item::Group(sub) => has_warped_image(sub),
         crate::artwork::Item::Path(_) => false,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small deterministic generator (xorshift), so the jitter is the same on every run.
+    fn jitter(state: &mut u64) -> f64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// How many times [`covered_runs`] covers each pixel of a `w × h` pixmap when it is
+    /// handed the triangles of an `nx × ny` grid of `points` (row-major), each cell cut along
+    /// one diagonal or the other.
+    fn coverage(points: &[Point], nx: usize, ny: usize, w: i64, h: i64) -> Vec<u32> {
+        let at = |i: usize, j: usize| points[j * (nx + 1) + i];
+        let mut count = vec![0u32; (w * h) as usize];
+        for j in 0..ny {
+            for i in 0..nx {
+                let (p, q, r, s) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                let halves = if (i + j) % 2 == 0 {
+                    [[p, q, r], [p, r, s]]
+                } else {
+                    [[p, q, s], [q, r, s]]
+                };
+                for tri in halves {
+                    covered_runs(tri, w, h, |y, l, r| {
+                        for x in l..r {
+                            count[(y * w + x) as usize] += 1;
+                        }
+                    });
+                }
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn triangles_that_tile_the_pixmap_cover_each_pixel_once() {
+        // A 9 × 7 grid of cells reaching past a 40 × 30 pixmap on every side, its inner
+        // vertices moved by at most a pixel each way (so no cell folds): once all onto pixel
+        // centres (every edge, horizontal, vertical or slanted, runs through centres: the tie
+        // rule decides them), once jittered at random.
+        let (w, h) = (40i64, 30i64);
+        let (nx, ny) = (9usize, 7usize);
+        let mut state = 0x2026_1203u64;
+        for snapped in [true, false] {
+            let mut points = Vec::new();
+            for j in 0..=ny {
+                for i in 0..=nx {
+                    let x = -3.0 + 46.0 * i as f64 / nx as f64;
+                    let y = -3.0 + 36.0 * j as f64 / ny as f64;
+                    let inner = i > 0 && i < nx && j > 0 && j < ny;
+                    points.push(match (inner, snapped) {
+                        (false, _) => Point::new(x, y),
+                        (true, true) => Point::new(x.round() + 0.5, y.round() + 0.5),
+                        (true, false) => Point::new(
+                            x + 2.0 * jitter(&mut state) - 1.0,
+                            y + 2.0 * jitter(&mut state) - 1.0,
+                        ),
+                    });
+                }
+            }
+            let count = coverage(&points, nx, ny, w, h);
+            let wrong: Vec<_> = (0..count.len()).filter(|&k| count[k] != 1).collect();
+            assert!(
+                wrong.is_empty(),
+                "snapped {snapped}: pixels covered other than once: {:?}",
+                &wrong[..wrong.len().min(10)]
+            );
+        }
+    }
+
+    #[test]
+    fn a_triangle_covers_the_pixel_centres_inside_it() {
+        // Right triangle (0,0) (10,0) (0,10): centre (x+½, y+½) inside when x + y + 1 < 10,
+        // and on the hypotenuse when x + y + 1 = 10 (given to one side by the tie rule).
+        let mut rows = Vec::new();
+        covered_runs(
+            [
+                Point::new(0.0, 0.0),
+                Point::new(10.0, 0.0),
+                Point::new(0.0, 10.0),
+            ],
+            20,
+            20,
+            |y, l, r| rows.push((y, l, r)),
+        );
+        assert_eq!(rows.len(), 10);
+        for (y, l, r) in rows {
+            assert_eq!(l, 0);
+            assert!(r == 9 - y || r == 10 - y, "row {y}: {l}..{r}");
+        }
+    }
+
+    #[test]
+    fn a_run_samples_like_the_texels_it_lands_on() {
+        // A 4 × 1 texture of grey levels; the run steps half a texel per pixel from the first
+        // texel's centre, so it meets each centre (exact texel) and each midpoint (the mean).
+        let texels: Vec<u8> = [0u8, 100, 200, 250]
+            .iter()
+            .flat_map(|&g| [g, g, g, 255])
+            .collect();
+        let sampler = Sampler {
+            texels: &texels,
+            width: 4,
+            height: 1,
+            nearest: false,
+        };
+        let mut out = vec![0u8; 4 * 7];
+        sampler.run(0, 0, ONE / 2, 0, &mut out);
+        let grey: Vec<u8> = out.chunks_exact(4).map(|p| p[0]).collect();
+        assert_eq!(grey, [0, 50, 100, 150, 200, 225, 250]);
+    }
 }
