@@ -388,15 +388,16 @@ fn covered_runs(tri: [Point; 3], width: i64, height: i64, mut run: impl FnMut(i6
     // Edge p → q: E(x, y) = (q.y − p.y)·(x − p.x) − (q.x − p.x)·(y − p.y), ≥ 0 inside; a
     // top or left edge keeps its zeros, the others drop them (bias −1). Per pixel to the
     // right E grows by (q.y − p.y)·256, per row down by −(q.x − p.x)·256.
+    // Each edge as (E at the first pixel centre of row y0, step right, step down).
+    let (cx, cy) = (x0 * unit + half, y0 * unit + half);
     let edge = |p: (i64, i64), q: (i64, i64)| {
         let (dx, dy) = (q.0 - p.0, q.1 - p.1);
         let top_left = (dy == 0 && dx > 0) || dy < 0;
-        let at = move |x: i64, y: i64| dy * (x - p.0) - dx * (y - p.1) - i64::from(!top_left);
-        (at, dy * unit, -dx * unit)
+        let start = dy * (cx - p.0) - dx * (cy - p.1) - i64::from(!top_left);
+        (start, dy * unit, -dx * unit)
     };
     let edges = [edge(a, b), edge(b, c), edge(c, a)];
-    let (cx, cy) = (x0 * unit + half, y0 * unit + half);
-    let mut row_start = edges.map(|(at, _, _)| at(cx, cy));
+    let mut row_start = edges.map(|(start, _, _)| start);
     for y in y0..=y1 {
         let mut e = row_start;
         let mut l = x0;
