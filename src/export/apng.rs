@@ -45,7 +45,7 @@ pub fn encode_apng(frames: &[Pixmap], timeline: &Timeline) -> Result<Vec<u8>> {
 }
 
 /// [`encode_apng`] of frames rendered on demand, written to `out` as they are compressed:
-/// memory holds a chunk of frames at a time, however many the timeline has.
+/// memory holds two chunks of frames at a time, however many the timeline has.
 ///
 /// `render(i)` is frame `i` of `timeline`, `size` pixels, called from rayon's threads once per
 /// frame shown (twice for the frames a yoyo shows twice). `out` must seek: the frame count in

@@ -393,8 +393,8 @@ impl Morph {
     }
 
     /// Hands frame `i` of `timeline` as a standalone SVG to `sink(i, svg)`, in frame order:
-    /// frames are made in parallel a chunk at a time, so memory holds one chunk however long
-    /// the timeline. Stops at the first error (of a frame or of `sink`).
+    /// frames are made in parallel a chunk at a time, so memory holds two chunks (the one
+    /// being handed on and the next) however long the timeline. Stops at the first error (of a frame or of `sink`).
     pub fn for_each_svg_frame(
         &self,
         timeline: &Timeline,

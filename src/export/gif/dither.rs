@@ -16,7 +16,10 @@
 //!   candidates are that entry, so flat fills and the background are not dotted.
 //! - Deterministic, and parallel over frames and pixels.
 
-use std::collections::HashMap;
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rustc_hash::FxHashMap;
 
 /// Palette entries mixed per colour (each shows in `64 / CANDIDATES` cells of the 8 × 8
 /// matrix): 16 mixes a gradient in steps of 1/16 of the palette's spacing.
@@ -47,6 +50,8 @@ const CELL: f32 = 256.0 / GRID as f32;
 /// A palette with a fast nearest-entry search (squared distance in RGB): each cell of a
 /// 16³ grid over the RGB cube lists the entries that can be nearest to some colour in it.
 pub(super) struct Ditherer {
+    /// A number no other ditherer of this process has: the key of the candidate cache.
+    id: u64,
     /// The palette's colours.
     colours: Vec<[f32; 3]>,
     /// The lightness order of the entries, to sort candidates by.
@@ -102,6 +107,7 @@ impl Ditherer {
             cells.push((start, lists.len() as u32));
         }
         Ditherer {
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             colours,
             rank,
             cells,
@@ -151,26 +157,52 @@ impl Ditherer {
     }
 
     /// One frame's packed RGB pixels (`width` per row) as dithered palette indices.
+    ///
+    /// A colour's candidates depend only on the colour and the palette, and neighbouring
+    /// frames of a morph (dithered one after another on a thread, often against the same
+    /// palette) share most of their colours, so each thread keeps the candidates it found for
+    /// the last palette it dithered against ([`CACHE`]); the indices are the same with or
+    /// without it.
     pub(super) fn map(&self, rgb: &[u8], width: usize) -> Vec<u8> {
-        let mut seen: HashMap<[u8; 3], [u8; CANDIDATES]> = HashMap::new();
-        let mut last: Option<([u8; 3], [u8; CANDIDATES])> = None;
-        rgb.chunks_exact(3)
-            .enumerate()
-            .map(|(i, c)| {
-                let c = [c[0], c[1], c[2]];
-                let cand = match last {
-                    Some((l, cand)) if l == c => cand,
-                    _ => {
-                        let cand = *seen.entry(c).or_insert_with(|| self.candidates(c));
-                        last = Some((c, cand));
-                        cand
-                    }
-                };
-                let (x, y) = (i % width, i / width);
-                cand[BAYER[y % 8][x % 8] as usize * CANDIDATES / 64]
-            })
-            .collect()
+        CACHE.with_borrow_mut(|(id, seen)| {
+            if *id != self.id || seen.len() > CACHE_LIMIT {
+                seen.clear();
+                *id = self.id;
+            }
+            let mut last: Option<([u8; 3], [u8; CANDIDATES])> = None;
+            rgb.chunks_exact(3)
+                .enumerate()
+                .map(|(i, c)| {
+                    let c = [c[0], c[1], c[2]];
+                    let cand = match last {
+                        Some((l, cand)) if l == c => cand,
+                        _ => {
+                            let cand = *seen.entry(c).or_insert_with(|| self.candidates(c));
+                            last = Some((c, cand));
+                            cand
+                        }
+                    };
+                    let (x, y) = (i % width, i / width);
+                    cand[BAYER[y % 8][x % 8] as usize * CANDIDATES / 64]
+                })
+                .collect()
+        })
     }
+}
+
+/// The source of [`Ditherer::id`].
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+
+/// At most this many colours' candidates are cached per thread (about 20 MiB).
+const CACHE_LIMIT: usize = 1 << 20;
+
+/// The candidates found so far for colours dithered against one palette.
+type Candidates = FxHashMap<[u8; 3], [u8; CANDIDATES]>;
+
+thread_local! {
+    /// Per thread: the id of the palette last dithered against, and the candidates found for
+    /// it so far.
+    static CACHE: RefCell<(u64, Candidates)> = RefCell::new((u64::MAX, Candidates::default()));
 }
 
 #[cfg(test)]
@@ -224,5 +256,32 @@ mod tests {
         assert!((mean - 40.0).abs() < 1.5, "mean {mean}");
         // The same colour at the same place gets the same index: still areas stay still.
         assert_eq!(idx, d.map(&between, w));
+    }
+
+    #[test]
+    fn cached_candidates_belong_to_their_palette() {
+        // A gradient dithered against two palettes in turn on one thread (the cache then holds
+        // the other palette's candidates) gives what each gives on a fresh thread.
+        let (w, h) = (64, 8);
+        let rgb: Vec<u8> = (0..w * h)
+            .flat_map(|i| {
+                let x = (i % w) as u8;
+                [x * 3, 255 - x * 2, 40 + x]
+            })
+            .collect();
+        let mut tinted = greys();
+        tinted
+            .iter_mut()
+            .step_by(3)
+            .for_each(|r| *r = r.saturating_add(9));
+        let (greys, tints) = (Ditherer::new(&greys()), Ditherer::new(&tinted));
+        let fresh =
+            |d: &Ditherer| std::thread::scope(|s| s.spawn(|| d.map(&rgb, w)).join().unwrap());
+        let (want_greys, want_tints) = (fresh(&greys), fresh(&tints));
+        assert_ne!(want_greys, want_tints, "the palettes dither differently");
+        for _ in 0..2 {
+            assert_eq!(greys.map(&rgb, w), want_greys);
+            assert_eq!(tints.map(&rgb, w), want_tints);
+        }
     }
 }

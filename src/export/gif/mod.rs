@@ -21,10 +21,14 @@
 //!   indices from frame to frame (no crawling dots, and the changed rectangle stays small), and
 //!   colours the palette holds stay flat.
 //! - **Local palettes where the global one is poor.** 256 colours for every frame of a morph
-//!   between two different gradients are spread thin: a frame whose colours the global table
-//!   misses by more than 1.5 levels RMS gets a table of its own when that one halves the error
-//!   (`Mapped::new`). Frames of a morph move almost everywhere, so the switch does not make
-//!   still areas shimmer; drawings the global table serves well (the gourd) never switch.
+//!   between two different gradients are spread thin. The frames are split into at most ten
+//!   runs of consecutive frames; a run whose colours the global table misses by more than 1.5
+//!   levels RMS gets a table of its own, shared by its frames, when that one cuts the error
+//!   by 40 % (`LocalTables`). Sharing keeps the training, the costliest step, to ten tables
+//!   however many frames there are, and a probe trained on a sixth of the sample skips the
+//!   runs no table of their own would help. Frames of a morph move almost everywhere, so the
+//!   switch does not make still areas shimmer; drawings the global table serves well (the
+//!   gourd) never switch.
 //! - **Timing.** See `playback_schedule`: delays of at least 2 cs (browsers replace shorter
 //!   ones by 100 ms), cumulative rounding so that the period stays right, and skipped frames
 //!   rather than a slower morph when the frame interval is under 20 ms.
@@ -53,7 +57,7 @@ use super::Timeline;
 use crate::artwork::Rgba;
 use crate::{Error, Result};
 pub use fidelity::{gif_fidelity, Fidelity};
-use palette::{frame_colours, sample_rgba, FrameColours, Palette};
+use palette::{frame_colours, sample_rgba, FrameColours, Palette, NEUQUANT_SAMPLEFAC};
 
 /// Shortest delay browsers honour: GIF delays of 0 or 1 cs are replaced by 100 ms.
 pub(crate) const GIF_MIN_DELAY: f64 = 0.02;
@@ -61,20 +65,41 @@ pub(crate) const GIF_MIN_DELAY: f64 = 0.02;
 pub(crate) use super::apng::APNG_MIN_DELAY;
 
 /// At most this many pixels train the global `NeuQuant` palette (spread over all frames).
-const PALETTE_SAMPLE: usize = 1 << 19;
+const PALETTE_SAMPLE: usize = 1 << 18;
 
-/// At most this many pixels of a frame train its local palette and judge both tables.
-const LOCAL_SAMPLE: usize = 1 << 16;
+/// At most this many pixels of a group of frames (spread evenly over them) train the group's
+/// local palette and judge both tables (see [`LocalTables`]). `NeuQuant` needs about this
+/// many steps for a smooth gradient: with a third of them the blue-green fixture's dither
+/// error doubled.
+const LOCAL_SAMPLE: usize = 3 << 15;
 
-/// The global table is poor for a frame when the mean squared distance (RGB levels, 0–255) from
-/// its pixels to their nearest entries is over this: an RMS error of 1.5 levels. Below it, no
-/// local table is even tried (the gourd's frames sit at about 1; a frame's own `NeuQuant` table,
-/// trained on fewer pixels, does worse there).
+/// `NeuQuant`'s sampling factor for the probe that decides whether a group's own table is
+/// worth training in full: a sixth of the training (see [`LocalTables`]).
+const PROBE_SAMPLEFAC: i32 = 6;
+
+/// How many times lower the full table's error is taken to be than the probe's. Measured on
+/// the fixtures' groups: 1.7–2× on pictures and 1.8–3.2× on smooth gradients, which need the
+/// whole training. A probe whose error is over `PROBE_REACH · LOCAL_GAIN` times the global
+/// table's is unlikely to lead to a table that passes [`LOCAL_GAIN`], so the full training is
+/// skipped. A wrong guess costs either a wasted training or a group left on the global table
+/// (a little more dither noise), never a wrong frame.
+const PROBE_REACH: f64 = 2.5;
+
+/// The frames shown are split into at most this many groups of consecutive frames, each of
+/// which may get a local table of its own: a group spans a tenth of the morph whatever the
+/// frame count, so its frames' colours stay close, and the training time does not grow with
+/// the frame count (60 frames: groups of 6).
+const LOCAL_GROUPS: usize = 10;
+
+/// The global table is poor for a group of frames when the mean squared distance (RGB levels,
+/// 0–255) from their pixels to its nearest entries is over this: an RMS error of 1.5 levels.
+/// Below it, no local table is even tried (the gourd's frames sit at about 1; a table of their
+/// own, trained on fewer pixels, does worse there).
 const POOR_GLOBAL: f64 = 2.25;
 
-/// A frame gets its own colour table when that table's mean squared error on the frame is
-/// under this fraction of the global table's (see [`Mapped::new`]).
-const LOCAL_GAIN: f64 = 0.5;
+/// A group of frames gets its own colour table when that table's mean squared error on the
+/// group's sample is under this fraction of the global table's (see [`LocalTables`]).
+const LOCAL_GAIN: f64 = 0.6;
 
 /// One frame as shown in one period of playback.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -208,7 +233,7 @@ pub fn encode_gif(
 }
 
 /// [`encode_gif`] of frames rendered on demand, written to `out` as they are encoded: memory
-/// holds a chunk of frames at a time, however many the timeline has.
+/// holds two chunks of frames at a time, however many the timeline has.
 ///
 /// `render(i)` is frame `i` of `timeline`, `size` pixels. It is called from rayon's threads,
 /// in two passes over the frames that are shown: the colours of every frame (for the global
@@ -257,7 +282,10 @@ pub fn write_gif<'f, W: Write>(
     let used = shown_frames(&schedule);
     let kept = &used[..kept_frames(used.len(), size)];
     let per_frame = (PALETTE_SAMPLE / used.len()).max(1);
+    let group = used.len().div_ceil(LOCAL_GROUPS).max(1);
+    let per_frame_local = (LOCAL_SAMPLE / group).max(1);
     let mut stats: Vec<FrameColours> = Vec::with_capacity(used.len());
+    let mut local_stats: Vec<FrameColours> = Vec::with_capacity(used.len());
     let mut cache: HashMap<usize, Vec<u8>> = HashMap::with_capacity(kept.len());
     let chunk = chunk_len(4 * wu * hu);
     in_order(
@@ -265,27 +293,42 @@ pub fn write_gif<'f, W: Write>(
         chunk,
         |&i| {
             let rgb = rgb(i)?;
+            let distinct = frame_colours(&rgb, 256);
+            let local = FrameColours {
+                distinct: distinct.clone(),
+                sample: sample_rgba(&rgb, per_frame_local, !(i as u64)),
+            };
             let colours = FrameColours {
-                distinct: frame_colours(&rgb, 256),
+                distinct,
                 sample: sample_rgba(&rgb, per_frame, i as u64),
             };
-            Ok((i, colours, kept.contains(&i).then_some(rgb)))
+            Ok((i, colours, local, kept.contains(&i).then_some(rgb)))
         },
-        |(i, c, rgb)| {
+        |(i, c, local, rgb)| {
             stats.push(c);
+            local_stats.push(local);
             cache.extend(rgb.map(|rgb| (i, rgb)));
             Ok(())
         },
     )?;
-    let global = Palette::build(&stats);
+    // The global table trains on one thread while the local tables' probes train on the
+    // others (they do not depend on it); an exact global table needs neither.
+    let (global, probes) = match Palette::exact(&stats) {
+        Some(exact) => (exact, Vec::new()),
+        None => rayon::join(
+            || Palette::build(&stats),
+            || LocalTables::probes(&local_stats, group),
+        ),
+    };
     drop(stats);
+    let locals = LocalTables::build(&global, &used, &local_stats, group, probes);
+    drop(local_stats);
 
     let err = |e: gif::EncodingError| Error::internal(format!("GIF encoding failed: {e}"));
     let mut enc = gif::Encoder::new(out, gw, gh, &global.colours).map_err(err)?;
     if tl.repeats() {
         enc.set_repeat(gif::Repeat::Infinite).map_err(err)?;
     }
-    let differs = |a: &Mapped, b: &Mapped, p: usize| a.colour(&global, p) != b.colour(&global, p);
     let shown: Vec<(usize, f64)> = schedule
         .iter()
         .map(|s| s.frame)
@@ -297,6 +340,7 @@ pub fn write_gif<'f, W: Write>(
         last: None,
         ready: Vec::new(),
         global: &global,
+        locals: &locals,
         size: (wu, hu),
     };
     let mut open: Option<Piece> = None;
@@ -304,15 +348,16 @@ pub fn write_gif<'f, W: Write>(
         &shown,
         chunk,
         |&(i, delay)| {
+            let local = locals.of(i);
             let mapped = match cache.get(&i) {
-                Some(rgb) => Mapped::new(rgb, wu, &global, i),
-                None => Mapped::new(&rgb(i)?, wu, &global, i),
+                Some(rgb) => Mapped::new(rgb, wu, &global, local),
+                None => Mapped::new(&rgb(i)?, wu, &global, local),
             };
             Ok((mapped, delay))
         },
         |(mapped, delay)| {
             match &mut open {
-                Some(p) if !(0..wu * hu).any(|q| differs(&p.mapped, &mapped, q)) => {
+                Some(p) if !p.mapped.differs_anywhere(&mapped, &global, &locals) => {
                     p.delay += delay;
                 }
                 _ => {
@@ -339,7 +384,7 @@ pub fn write_gif<'f, W: Write>(
 const KEPT_FRAMES: usize = 64;
 
 /// …and at most this many bytes of them (composited RGB).
-const KEPT_BYTES: usize = 32 << 20;
+const KEPT_BYTES: usize = 64 << 20;
 
 /// The frames a schedule shows, each once, in frame order.
 fn shown_frames(schedule: &[Shown]) -> Vec<usize> {
@@ -380,6 +425,7 @@ struct PieceWriter<'a> {
     /// Final pieces not written yet, in order.
     ready: Vec<Piece>,
     global: &'a Palette,
+    locals: &'a LocalTables,
     size: (usize, usize),
 }
 
@@ -387,8 +433,7 @@ impl PieceWriter<'_> {
     /// LZW-encodes the ready pieces in parallel and writes them in order.
     fn flush<W: Write>(&mut self, enc: &mut gif::Encoder<W>) -> Result<()> {
         let (wu, hu) = self.size;
-        let global = self.global;
-        let differs = |a: &Mapped, b: &Mapped, p: usize| a.colour(global, p) != b.colour(global, p);
+        let (global, locals) = (self.global, self.locals);
         let ready = &self.ready;
         let last = self.last.as_ref();
         let mut frames: Vec<gif::Frame<'static>> = ready
@@ -403,7 +448,12 @@ impl PieceWriter<'_> {
                 };
                 let (x0, y0, x1, y1) = match prev {
                     None => (0, 0, wu, hu),
-                    Some(prev) => changed_rect_by(wu, hu, |p| differs(prev, cur, p)),
+                    Some(prev) if prev.local == cur.local => {
+                        changed_rect(Some(&prev.indices), &cur.indices, wu, hu)
+                    }
+                    Some(prev) => changed_rect_by(wu, hu, |p| {
+                        prev.colour(global, locals, p) != cur.colour(global, locals, p)
+                    }),
                 };
                 let mut pixels = Vec::with_capacity((x1 - x0) * (y1 - y0));
                 for y in y0..y1 {
@@ -417,7 +467,7 @@ impl PieceWriter<'_> {
                     width: (x1 - x0) as u16,
                     height: (y1 - y0) as u16,
                     buffer: pixels.into(),
-                    palette: cur.local.as_ref().map(|p| p.colours.clone()),
+                    palette: cur.local.map(|k| locals.tables[k].colours.clone()),
                     ..gif::Frame::default()
                 };
                 f.make_lzw_pre_encoded();
@@ -440,44 +490,136 @@ impl PieceWriter<'_> {
 struct Mapped {
     /// A palette index per pixel, row after row.
     indices: Vec<u8>,
-    /// The frame's own table, when the global one is poor for it.
-    local: Option<Palette>,
+    /// The frame's own table (an index into [`LocalTables::tables`]), when the global one is
+    /// poor for it.
+    local: Option<usize>,
 }
 
 impl Mapped {
-    /// Frame `seed`'s packed RGB pixels (`width` per row) dithered against the global table,
-    /// or against a table of its own where the global one is poor for it (a sampled mean
-    /// squared error over [`POOR_GLOBAL`]) and its own is much closer to its colours (under
-    /// [`LOCAL_GAIN`] times the global table's error). An exact global table (at most 256
-    /// colours in all) is never replaced.
-    fn new(rgb: &[u8], width: usize, global: &Palette, seed: usize) -> Mapped {
-        let local = (!global.is_exact())
-            .then(|| {
-                let sample = sample_rgba(rgb, LOCAL_SAMPLE, seed as u64);
-                let poor = global.mean_error(&sample);
-                if poor <= POOR_GLOBAL {
-                    return None;
-                }
-                let own = [FrameColours {
-                    distinct: frame_colours(rgb, 256),
-                    sample,
-                }];
-                let table = Palette::build(&own);
-                (table.mean_error(&own[0].sample) < LOCAL_GAIN * poor).then_some(table)
-            })
-            .flatten();
+    /// A frame's packed RGB pixels (`width` per row) dithered against its local table
+    /// `local` (its index and the table), or else against the global one.
+    fn new(rgb: &[u8], width: usize, global: &Palette, local: Option<(usize, &Palette)>) -> Mapped {
         Mapped {
-            indices: local.as_ref().unwrap_or(global).map(rgb, width),
-            local,
+            indices: local.map_or(global, |(_, t)| t).map(rgb, width),
+            local: local.map(|(k, _)| k),
         }
     }
 
+    /// Whether any pixel shows another colour in `other` than in `self`: the indices compared
+    /// directly when both use one table.
+    fn differs_anywhere(&self, other: &Mapped, global: &Palette, locals: &LocalTables) -> bool {
+        if self.local == other.local {
+            return self.indices != other.indices;
+        }
+        (0..self.indices.len())
+            .any(|p| self.colour(global, locals, p) != other.colour(global, locals, p))
+    }
+
     /// The colour pixel `p` shows, as an index into the packed triples of its table.
-    fn colour<'a>(&'a self, global: &'a Palette, p: usize) -> &'a [u8] {
-        let table = self.local.as_ref().unwrap_or(global);
+    fn colour<'a>(&'a self, global: &'a Palette, locals: &'a LocalTables, p: usize) -> &'a [u8] {
+        let table = self.local.map_or(global, |k| &locals.tables[k]);
         let i = 3 * self.indices[p] as usize;
         &table.colours[i..i + 3]
     }
+}
+
+/// The local colour tables of an animation, each shared by a group of consecutive frames.
+///
+/// Training a `NeuQuant` table is the costliest step of the encoder, and neighbouring frames
+/// of a morph hold nearly the same colours, so the frames shown are split into at most
+/// [`LOCAL_GROUPS`] runs of consecutive frames, each sharing one table, trained on samples of all of them. A group gets a table where the
+/// global one is poor for its frames (a sampled mean squared error over [`POOR_GLOBAL`]) and
+/// its own is much closer to their colours (under [`LOCAL_GAIN`] times the global table's
+/// error): exactly their colours when they have at most 256, else a `NeuQuant` table. Before
+/// that table is trained, a probe trained on a sixth of the sample ([`PROBE_SAMPLEFAC`]) must
+/// come close enough ([`PROBE_REACH`]): where it does not (frames the global table serves
+/// about as well as any table can), the full training is skipped. An exact global table (at most 256
+/// colours in all) is never replaced.
+struct LocalTables {
+    /// The tables that were kept.
+    tables: Vec<Palette>,
+    /// For each frame that has a local table, its index in `tables`.
+    of_frame: HashMap<usize, usize>,
+}
+
+impl LocalTables {
+    /// Each group's probe: a table trained on a sixth of its sample ([`PROBE_SAMPLEFAC`]);
+    /// `None` for a group whose frames have at most 256 colours in all (its table is exact).
+    /// `stats[k]` are the colours of the `k`-th frame shown and a sample of its pixels.
+    fn probes(stats: &[FrameColours], group: usize) -> Vec<Option<Palette>> {
+        stats
+            .par_chunks(group)
+            .with_max_len(1)
+            .map(|members| {
+                let exact = members.iter().all(|m| m.distinct.is_some())
+                    && Palette::exact(members).is_some();
+                (!exact).then(|| Palette::trained(&group_sample(members), PROBE_SAMPLEFAC))
+            })
+            .collect()
+    }
+
+    /// The tables of the frames `used` (in frame order), `stats[k]` being the colours of frame
+    /// `used[k]` and a sample of its pixels, and `probes` those of [`LocalTables::probes`].
+    fn build(
+        global: &Palette,
+        used: &[usize],
+        stats: &[FrameColours],
+        group: usize,
+        probes: Vec<Option<Palette>>,
+    ) -> LocalTables {
+        let mut out = LocalTables {
+            tables: Vec::new(),
+            of_frame: HashMap::new(),
+        };
+        if global.is_exact() {
+            return out;
+        }
+        let built: Vec<Option<Palette>> = stats
+            .par_chunks(group)
+            .zip(probes)
+            .with_max_len(1)
+            .map(|(members, probe)| {
+                let sample = group_sample(members);
+                // Every fourth pixel of the sample judges the tables: plenty for a mean.
+                let judge: Vec<u8> = sample
+                    .chunks_exact(4)
+                    .step_by(4)
+                    .flatten()
+                    .copied()
+                    .collect();
+                let poor = global.mean_error(&judge);
+                if poor <= POOR_GLOBAL {
+                    return None;
+                }
+                let Some(probe) = probe else {
+                    return Palette::exact(members);
+                };
+                if probe.mean_error(&judge) >= PROBE_REACH * LOCAL_GAIN * poor {
+                    return None;
+                }
+                let table = Palette::trained(&sample, NEUQUANT_SAMPLEFAC);
+                (table.mean_error(&judge) < LOCAL_GAIN * poor).then_some(table)
+            })
+            .collect();
+        for (frames, table) in used.chunks(group).zip(built) {
+            if let Some(table) = table {
+                let k = out.tables.len();
+                out.tables.push(table);
+                out.of_frame.extend(frames.iter().map(|&f| (f, k)));
+            }
+        }
+        out
+    }
+
+    /// Frame `frame`'s local table and its index, if it has one.
+    fn of(&self, frame: usize) -> Option<(usize, &Palette)> {
+        self.of_frame.get(&frame).map(|&k| (k, &self.tables[k]))
+    }
+}
+
+/// The pixel samples of a group of frames, one after another.
+fn group_sample(members: &[FrameColours]) -> Vec<u8> {
+    members.iter().flat_map(|m| &m.sample).copied().collect()
 }
 
 /// The background as an opaque colour: white for `None`, a translucent one flattened onto white.
@@ -784,6 +926,42 @@ mod tests {
         assert_eq!(f.frames, n);
         assert!(f.mean_smoothed_delta_e < 0.002, "{f:?}");
         assert!(f.mean_delta_e < 0.006, "{f:?}");
+    }
+
+    /// Local colour tables, one per run of consecutive frames: a gradient that drifts over 60
+    /// frames gets local tables (the global one is spread over every frame's colours), at most
+    /// `LOCAL_GROUPS` of them, each shared by consecutive frames.
+    #[test]
+    fn runs_of_frames_share_local_tables() {
+        let (w, h, n) = (240u32, 16u32, 60usize);
+        let frames: Vec<Pixmap> = (0..n)
+            .map(|k| {
+                let mut p = Pixmap::new(w, h).unwrap();
+                let s = k as f64 / (n - 1) as f64;
+                for (i, px) in p.pixels_mut().iter_mut().enumerate() {
+                    let x = (i as u32 % w) as f64 / (w - 1) as f64;
+                    let c = [200.0 * s + 30.0 * x, 40.0 + 180.0 * x, 220.0 - 190.0 * s];
+                    let c = c.map(|v: f64| v.round() as u8);
+                    *px = tiny_skia::ColorU8::from_rgba(c[0], c[1], c[2], 255).premultiply();
+                }
+                p
+            })
+            .collect();
+        let tl = timeline(n, 2.0, Playback::Once);
+        let bytes = encode_gif(&frames, &tl, None).unwrap();
+        let mut d = gif::DecodeOptions::new().read_info(&bytes[..]).unwrap();
+        let mut tables: Vec<Option<Vec<u8>>> = Vec::new();
+        while let Some(f) = d.read_next_frame().unwrap() {
+            tables.push(f.palette.clone());
+        }
+        assert_eq!(tables.len(), n);
+        let locals = tables.iter().filter(|t| t.is_some()).count();
+        assert!(locals > n / 2, "{locals} of {n} frames have a local table");
+        // Count the runs of equal tables: consecutive frames of a group share theirs.
+        let runs = 1 + tables.windows(2).filter(|p| p[0] != p[1]).count();
+        assert!(runs <= LOCAL_GROUPS + 1, "{runs} runs of tables");
+        let f = gif_fidelity(&bytes, &frames, &tl, None).unwrap();
+        assert!(f.mean_smoothed_delta_e < 0.002, "{f:?}");
     }
 
     fn straight(p: &Pixmap) -> Vec<u8> {

@@ -7,7 +7,7 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 use super::dither::Ditherer;
 
 /// `NeuQuant`'s sampling factor: 1 is best and slowest, 10 the usual compromise.
-const NEUQUANT_SAMPLEFAC: i32 = 1;
+pub(super) const NEUQUANT_SAMPLEFAC: i32 = 1;
 
 /// What the palette needs to know of one frame.
 pub(super) struct FrameColours {
@@ -38,34 +38,33 @@ impl Palette {
     /// The exact colours of `stats` when there are at most 256 of them, else a `NeuQuant`
     /// palette trained on their pixel samples together.
     pub(super) fn build(stats: &[FrameColours]) -> Palette {
-        let mut all = Some(BTreeSet::new());
-        let mut sample = Vec::new();
-        for FrameColours {
-            distinct,
-            sample: s,
-        } in stats
-        {
-            all = match (all, distinct) {
-                (Some(mut all), Some(c)) => {
-                    all.extend(c.iter().copied());
-                    (all.len() <= 256).then_some(all)
-                }
-                _ => None,
-            };
-            sample.extend_from_slice(s);
+        Palette::exact(stats).unwrap_or_else(|| {
+            let sample: Vec<u8> = stats.iter().flat_map(|s| &s.sample).copied().collect();
+            Palette::trained(&sample, NEUQUANT_SAMPLEFAC)
+        })
+    }
+
+    /// The colours of `stats` as an exact table, when there are at most 256 in all.
+    pub(super) fn exact(stats: &[FrameColours]) -> Option<Palette> {
+        let mut all = BTreeSet::new();
+        for s in stats {
+            all.extend(s.distinct.as_ref()?.iter().copied());
+            if all.len() > 256 {
+                return None;
+            }
         }
-        if let Some(colours) = all {
-            let lookup = colours
-                .iter()
-                .enumerate()
-                .map(|(i, &c)| (c, i as u8))
-                .collect();
-            return Palette {
-                colours: colours.into_iter().flatten().collect(),
-                lookup: Lookup::Exact(lookup),
-            };
-        }
-        let nq = color_quant::NeuQuant::new(NEUQUANT_SAMPLEFAC, 256, &sample);
+        let lookup = all.iter().enumerate().map(|(i, &c)| (c, i as u8)).collect();
+        Some(Palette {
+            colours: all.into_iter().flatten().collect(),
+            lookup: Lookup::Exact(lookup),
+        })
+    }
+
+    /// A `NeuQuant` palette trained on `sample` (opaque RGBA) with sampling factor
+    /// `samplefac` (1 learns from every pixel of the sample; `k` from one in `k`, faster and
+    /// coarser).
+    pub(super) fn trained(sample: &[u8], samplefac: i32) -> Palette {
+        let nq = color_quant::NeuQuant::new(samplefac, 256, sample);
         let colours = nq.color_map_rgb();
         Palette {
             lookup: Lookup::Dithered(Ditherer::new(&colours)),
