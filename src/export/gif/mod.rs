@@ -35,8 +35,8 @@
 //! - **Small files.** After the first frame only the rectangle whose colours changed is stored
 //!   (frames are opaque, so each one simply draws over the last); identical consecutive frames
 //!   merge into one longer delay. Dithering costs size (LZW compresses patterns worse than
-//!   bands): the 60-frame gradient fixtures grow from 295 KB and 436 KB to 650 KB and 769 KB,
-//!   the gourd from 1.08 MB to 1.30 MB.
+//!   bands): the 60-frame gradient fixtures grow from 295 KB and 436 KB to 720 KB and 877 KB,
+//!   the gourd from 1.08 MB to 1.29 MB.
 //!
 //! [`gif_fidelity`] measures the result in Oklab (`cargo run --release --example
 //! gif_fidelity`).
@@ -237,7 +237,7 @@ pub fn encode_gif(
 ///
 /// `render(i)` is frame `i` of `timeline`, `size` pixels. It is called from rayon's threads,
 /// in two passes over the frames that are shown: the colours of every frame (for the global
-/// palette) and then, in playback order, their indices. The first 64 frames (at most 32 MiB)
+/// palette) and then, in playback order, their indices. The first 64 frames (at most 64 MiB)
 /// are kept between the passes; the others are rendered twice (three times for the frames a
 /// yoyo shows twice) — the price of a palette shared by all frames without keeping them all.
 /// The bytes are those of [`encode_gif`] on the same frames.
@@ -393,7 +393,7 @@ fn shown_frames(schedule: &[Shown]) -> Vec<usize> {
 }
 
 /// How many of the `used` frames shown (the first ones) stay in memory between the two passes
-/// at `size`: all of a default 60-frame animation at sizes up to about 400², so that it is
+/// at `size`: all of a default 60-frame animation at sizes up to about 600², so that it is
 /// rendered once, and never more than [`KEPT_BYTES`], so that memory does not grow with the
 /// frame count.
 fn kept_frames(used: usize, size: (u32, u32)) -> usize {
