@@ -898,27 +898,39 @@ mod tests {
         }
     }
 
+    /// `n` opaque frames of `size` whose pixel at `(x, y)` (each 0–1 across the frame) has the
+    /// colour `colour(x, y, s)` (RGB, 0–255) in frame `k`, `s = k / (n − 1)`.
+    fn gradient_frames(
+        (w, h): (u32, u32),
+        n: usize,
+        colour: impl Fn(f64, f64, f64) -> [f64; 3],
+    ) -> Vec<Pixmap> {
+        (0..n)
+            .map(|k| {
+                let mut p = Pixmap::new(w, h).unwrap();
+                let s = k as f64 / (n - 1) as f64;
+                for (i, px) in p.pixels_mut().iter_mut().enumerate() {
+                    let x = (i as u32 % w) as f64 / (w - 1) as f64;
+                    let y = (i as u32 / w) as f64 / (h - 1) as f64;
+                    let c = colour(x, y, s).map(|v| v.round().clamp(0.0, 255.0) as u8);
+                    *px = tiny_skia::ColorU8::from_rgba(c[0], c[1], c[2], 255).premultiply();
+                }
+                p
+            })
+            .collect()
+    }
+
     /// The case: a blue → green gradient whose colours drift from frame to frame, with
     /// more than 256 colours in every frame. Dithered, the GIF reproduces it on average (no
     /// bands) and within a small per-pixel error.
     #[test]
     fn a_drifting_blue_green_gradient_does_not_band() {
-        let (w, h, n) = (480u32, 32u32, 12usize);
-        let frames: Vec<Pixmap> = (0..n)
-            .map(|k| {
-                let mut p = Pixmap::new(w, h).unwrap();
-                let shift = k as f64 / (n - 1) as f64;
-                for (i, px) in p.pixels_mut().iter_mut().enumerate() {
-                    let x = (i as u32 % w) as f64 / (w - 1) as f64;
-                    let y = (i as u32 / w) as f64 / (h - 1) as f64;
-                    let from = [29.0, 78.0 - 40.0 * shift, 216.0 - 30.0 * y];
-                    let to = [22.0 + 50.0 * shift, 163.0 + 60.0 * shift, 74.0];
-                    let c = [0, 1, 2].map(|j| (from[j] + (to[j] - from[j]) * x).round() as u8);
-                    *px = tiny_skia::ColorU8::from_rgba(c[0], c[1], c[2], 255).premultiply();
-                }
-                p
-            })
-            .collect();
+        let n = 12;
+        let frames = gradient_frames((480, 32), n, |x, y, shift| {
+            let from = [29.0, 78.0 - 40.0 * shift, 216.0 - 30.0 * y];
+            let to = [22.0 + 50.0 * shift, 163.0 + 60.0 * shift, 74.0];
+            [0, 1, 2].map(|j| from[j] + (to[j] - from[j]) * x)
+        });
         let tl = timeline(n, 1.0, Playback::Once);
         let bytes = encode_gif(&frames, &tl, None).unwrap();
         let f = gif_fidelity(&bytes, &frames, &tl, None).unwrap();
@@ -933,20 +945,10 @@ mod tests {
     /// `LOCAL_GROUPS` of them, each shared by consecutive frames.
     #[test]
     fn runs_of_frames_share_local_tables() {
-        let (w, h, n) = (240u32, 16u32, 60usize);
-        let frames: Vec<Pixmap> = (0..n)
-            .map(|k| {
-                let mut p = Pixmap::new(w, h).unwrap();
-                let s = k as f64 / (n - 1) as f64;
-                for (i, px) in p.pixels_mut().iter_mut().enumerate() {
-                    let x = (i as u32 % w) as f64 / (w - 1) as f64;
-                    let c = [200.0 * s + 30.0 * x, 40.0 + 180.0 * x, 220.0 - 190.0 * s];
-                    let c = c.map(|v: f64| v.round() as u8);
-                    *px = tiny_skia::ColorU8::from_rgba(c[0], c[1], c[2], 255).premultiply();
-                }
-                p
-            })
-            .collect();
+        let n = 60;
+        let frames = gradient_frames((240, 16), n, |x, _, s| {
+            [200.0 * s + 30.0 * x, 40.0 + 180.0 * x, 220.0 - 190.0 * s]
+        });
         let tl = timeline(n, 2.0, Playback::Once);
         let bytes = encode_gif(&frames, &tl, None).unwrap();
         let mut d = gif::DecodeOptions::new().read_info(&bytes[..]).unwrap();
