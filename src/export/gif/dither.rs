@@ -56,10 +56,13 @@ pub(super) struct Ditherer {
     colours: Vec<[f32; 3]>,
     /// The lightness order of the entries, to sort candidates by.
     rank: Vec<u16>,
-    /// For each cell, the range of `lists` holding its entries.
+    /// For each cell, the range of `lists` (and of `list_colours`) holding its entries.
     cells: Vec<(u32, u32)>,
     /// Entry indices, cell after cell.
     lists: Vec<u8>,
+    /// The colours of the entries in `lists`, channel by channel, so that a cell's search
+    /// reads three contiguous runs instead of looking each entry up.
+    list_colours: [Vec<f32>; 3],
 }
 
 impl Ditherer {
@@ -106,12 +109,15 @@ impl Ditherer {
             );
             cells.push((start, lists.len() as u32));
         }
+        let list_colours =
+            [0, 1, 2].map(|k| lists.iter().map(|&i| colours[i as usize][k]).collect());
         Ditherer {
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             colours,
             rank,
             cells,
             lists,
+            list_colours,
         }
     }
 
@@ -130,15 +136,21 @@ impl Ditherer {
         let c = c.map(|v| v.clamp(0.0, 255.0));
         let k = c.map(|v| ((v / CELL) as usize).min(GRID - 1));
         let (a, b) = self.cells[(k[0] * GRID + k[1]) * GRID + k[2]];
-        let mut best = (f32::INFINITY, 0u8);
-        for &i in &self.lists[a as usize..b as usize] {
-            let p = self.colours[i as usize];
-            let d = (0..3).map(|j| (p[j] - c[j]) * (p[j] - c[j])).sum::<f32>();
-            if d < best.0 {
-                best = (d, i);
+        let range = a as usize..b as usize;
+        let [r, g, bl] = &self.list_colours;
+        let (r, g, bl) = (&r[range.clone()], &g[range.clone()], &bl[range.clone()]);
+        let (mut best, mut at) = (f32::INFINITY, 0);
+        for k in 0..r.len() {
+            let (dr, dg, db) = (r[k] - c[0], g[k] - c[1], bl[k] - c[2]);
+            let d = dr * dr + dg * dg + db * db;
+            if d < best {
+                (best, at) = (d, k);
             }
         }
-        best
+        match self.lists.get(range.start + at) {
+            Some(&i) if best.is_finite() => (best, i),
+            _ => (f32::INFINITY, 0),
+        }
     }
 
     /// The candidates of colour `c`, sorted by lightness (see the module docs).
