@@ -2,7 +2,9 @@
 //! trained on a sample of the pixels (of all frames for the global table, of one frame for a
 //! local one), dithered against (see [`super::dither`]).
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::BTreeSet;
+
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::dither::Ditherer;
 
@@ -12,7 +14,7 @@ pub(super) const NEUQUANT_SAMPLEFAC: i32 = 1;
 /// What the palette needs to know of one frame.
 pub(super) struct FrameColours {
     /// Its distinct colours, `None` when there are more than 256.
-    pub(super) distinct: Option<HashSet<[u8; 3]>>,
+    pub(super) distinct: Option<FxHashSet<[u8; 3]>>,
     /// A sample of its pixels as opaque RGBA.
     pub(super) sample: Vec<u8>,
 }
@@ -29,7 +31,7 @@ pub(super) struct Palette {
 /// How a colour finds its index.
 enum Lookup {
     /// Every colour of the animation is in the table (at most 256 in all).
-    Exact(HashMap<[u8; 3], u8>),
+    Exact(FxHashMap<[u8; 3], u8>),
     /// A `NeuQuant` palette trained on a sample; pixels are dithered against it.
     Dithered(Ditherer),
 }
@@ -106,8 +108,8 @@ impl Palette {
 
 /// The distinct colours of one frame's packed RGB pixels, or `None` when there are more than
 /// `limit`.
-pub(super) fn frame_colours(rgb: &[u8], limit: usize) -> Option<HashSet<[u8; 3]>> {
-    let mut set = HashSet::new();
+pub(super) fn frame_colours(rgb: &[u8], limit: usize) -> Option<FxHashSet<[u8; 3]>> {
+    let mut set = FxHashSet::default();
     for c in rgb.chunks_exact(3) {
         if set.insert([c[0], c[1], c[2]]) && set.len() > limit {
             return None;
