@@ -205,8 +205,10 @@ impl Ditherer {
 /// The source of [`Ditherer::id`].
 static NEXT_ID: AtomicU64 = AtomicU64::new(0);
 
-/// At most this many colours' candidates are cached per thread (about 20 MiB).
-const CACHE_LIMIT: usize = 1 << 20;
+/// At most this many colours' candidates are cached per thread: the map then holds 2²⁰
+/// buckets of 20 bytes, 20 MiB, which a thread keeps until it dithers again (a run of six
+/// 512² picture frames has a few hundred thousand colours).
+const CACHE_LIMIT: usize = 1 << 19;
 
 /// The candidates found so far for colours dithered against one palette.
 type Candidates = FxHashMap<[u8; 3], [u8; CANDIDATES]>;
