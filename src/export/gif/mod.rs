@@ -285,7 +285,6 @@ pub fn write_gif<'f, W: Write>(
     let group = used.len().div_ceil(LOCAL_GROUPS).max(1);
     let per_frame_local = (LOCAL_SAMPLE / group).max(1);
     let mut stats: Vec<FrameColours> = Vec::with_capacity(used.len());
-    let mut local_stats: Vec<FrameColours> = Vec::with_capacity(used.len());
     let mut cache: HashMap<usize, Vec<u8>> = HashMap::with_capacity(kept.len());
     let chunk = chunk_len(4 * wu * hu);
     in_order(
@@ -293,36 +292,33 @@ pub fn write_gif<'f, W: Write>(
         chunk,
         |&i| {
             let rgb = rgb(i)?;
-            let distinct = frame_colours(&rgb, 256);
-            let local = FrameColours {
-                distinct: distinct.clone(),
-                sample: sample_rgba(&rgb, per_frame_local, !(i as u64)),
-            };
             let colours = FrameColours {
-                distinct,
+                distinct: frame_colours(&rgb, 256),
                 sample: sample_rgba(&rgb, per_frame, i as u64),
+                run_sample: sample_rgba(&rgb, per_frame_local, !(i as u64)),
             };
-            Ok((i, colours, local, kept.contains(&i).then_some(rgb)))
+            Ok((i, colours, kept.contains(&i).then_some(rgb)))
         },
-        |(i, c, local, rgb)| {
+        |(i, c, rgb)| {
             stats.push(c);
-            local_stats.push(local);
             cache.extend(rgb.map(|rgb| (i, rgb)));
             Ok(())
         },
     )?;
-    // The global table trains on one thread while the local tables' probes train on the
+    // The global table trains on one thread while the local tables' first tries train on the
     // others (they do not depend on it); an exact global table needs neither.
-    let (global, probes) = match Palette::exact(&stats) {
+    let (global, first) = match Palette::exact(&stats) {
         Some(exact) => (exact, Vec::new()),
         None => rayon::join(
-            || Palette::build(&stats),
-            || LocalTables::probes(&local_stats, group),
+            || {
+                let sample: Vec<u8> = stats.iter().flat_map(|s| &s.sample).copied().collect();
+                Palette::trained(&sample, NEUQUANT_SAMPLEFAC)
+            },
+            || LocalTables::first_tries(&stats, group),
         ),
     };
+    let locals = LocalTables::build(&global, &used, &stats, group, first);
     drop(stats);
-    let locals = LocalTables::build(&global, &used, &local_stats, group, probes);
-    drop(local_stats);
 
     let err = |e: gif::EncodingError| Error::internal(format!("GIF encoding failed: {e}"));
     let mut enc = gif::Encoder::new(out, gw, gh, &global.colours).map_err(err)?;
@@ -357,7 +353,7 @@ pub fn write_gif<'f, W: Write>(
         },
         |(mapped, delay)| {
             match &mut open {
-                Some(p) if !p.mapped.differs_anywhere(&mapped, &global, &locals) => {
+                Some(p) if !(0..wu * hu).any(p.mapped.differs(&mapped, &global, &locals)) => {
                     p.delay += delay;
                 }
                 _ => {
@@ -448,12 +444,7 @@ impl PieceWriter<'_> {
                 };
                 let (x0, y0, x1, y1) = match prev {
                     None => (0, 0, wu, hu),
-                    Some(prev) if prev.local == cur.local => {
-                        changed_rect(Some(&prev.indices), &cur.indices, wu, hu)
-                    }
-                    Some(prev) => changed_rect_by(wu, hu, |p| {
-                        prev.colour(global, locals, p) != cur.colour(global, locals, p)
-                    }),
+                    Some(prev) => changed_rect_by(wu, hu, prev.differs(cur, global, locals)),
                 };
                 let mut pixels = Vec::with_capacity((x1 - x0) * (y1 - y0));
                 for y in y0..y1 {
@@ -505,14 +496,22 @@ impl Mapped {
         }
     }
 
-    /// Whether any pixel shows another colour in `other` than in `self`: the indices compared
-    /// directly when both use one table.
-    fn differs_anywhere(&self, other: &Mapped, global: &Palette, locals: &LocalTables) -> bool {
-        if self.local == other.local {
-            return self.indices != other.indices;
+    /// Whether pixel `p` shows another colour in `other` than in `self`: their indices
+    /// compared directly when both use one table, else the colours they stand for.
+    fn differs<'a>(
+        &'a self,
+        other: &'a Mapped,
+        global: &'a Palette,
+        locals: &'a LocalTables,
+    ) -> impl Fn(usize) -> bool + 'a {
+        let one_table = self.local == other.local;
+        move |p| {
+            if one_table {
+                self.indices[p] != other.indices[p]
+            } else {
+                self.colour(global, locals, p) != other.colour(global, locals, p)
+            }
         }
-        (0..self.indices.len())
-            .any(|p| self.colour(global, locals, p) != other.colour(global, locals, p))
     }
 
     /// The colour pixel `p` shows, as an index into the packed triples of its table.
@@ -543,29 +542,29 @@ struct LocalTables {
 }
 
 impl LocalTables {
-    /// Each group's probe: a table trained on a sixth of its sample ([`PROBE_SAMPLEFAC`]);
-    /// `None` for a group whose frames have at most 256 colours in all (its table is exact).
-    /// `stats[k]` are the colours of the `k`-th frame shown and a sample of its pixels.
-    fn probes(stats: &[FrameColours], group: usize) -> Vec<Option<Palette>> {
+    /// Each group's first try: its frames' exact colours when they have at most 256 in all,
+    /// else a probe, a table trained on a sixth of its sample ([`PROBE_SAMPLEFAC`]).
+    /// `stats[k]` are the colours of the `k`-th frame shown and samples of its pixels.
+    fn first_tries(stats: &[FrameColours], group: usize) -> Vec<Palette> {
         stats
             .par_chunks(group)
             .with_max_len(1)
             .map(|members| {
-                let exact = members.iter().all(|m| m.distinct.is_some())
-                    && Palette::exact(members).is_some();
-                (!exact).then(|| Palette::trained(&group_sample(members), PROBE_SAMPLEFAC))
+                Palette::exact(members)
+                    .unwrap_or_else(|| Palette::trained(&group_sample(members), PROBE_SAMPLEFAC))
             })
             .collect()
     }
 
     /// The tables of the frames `used` (in frame order), `stats[k]` being the colours of frame
-    /// `used[k]` and a sample of its pixels, and `probes` those of [`LocalTables::probes`].
+    /// `used[k]` and samples of its pixels, and `first` the groups' first tries
+    /// ([`LocalTables::first_tries`]).
     fn build(
         global: &Palette,
         used: &[usize],
         stats: &[FrameColours],
         group: usize,
-        probes: Vec<Option<Palette>>,
+        first: Vec<Palette>,
     ) -> LocalTables {
         let mut out = LocalTables {
             tables: Vec::new(),
@@ -576,9 +575,9 @@ impl LocalTables {
         }
         let built: Vec<Option<Palette>> = stats
             .par_chunks(group)
-            .zip(probes)
+            .zip(first)
             .with_max_len(1)
-            .map(|(members, probe)| {
+            .map(|(members, first)| {
                 let sample = group_sample(members);
                 // Every fourth pixel of the sample judges the tables: plenty for a mean.
                 let judge: Vec<u8> = sample
@@ -591,10 +590,10 @@ impl LocalTables {
                 if poor <= POOR_GLOBAL {
                     return None;
                 }
-                let Some(probe) = probe else {
-                    return Palette::exact(members);
-                };
-                if probe.mean_error(&judge) >= PROBE_REACH * LOCAL_GAIN * poor {
+                if first.is_exact() {
+                    return Some(first);
+                }
+                if first.mean_error(&judge) >= PROBE_REACH * LOCAL_GAIN * poor {
                     return None;
                 }
                 let table = Palette::trained(&sample, NEUQUANT_SAMPLEFAC);
@@ -617,9 +616,13 @@ impl LocalTables {
     }
 }
 
-/// The pixel samples of a group of frames, one after another.
+/// The run samples of a group of frames, one after another.
 fn group_sample(members: &[FrameColours]) -> Vec<u8> {
-    members.iter().flat_map(|m| &m.sample).copied().collect()
+    members
+        .iter()
+        .flat_map(|m| &m.run_sample)
+        .copied()
+        .collect()
 }
 
 /// The background as an opaque colour: white for `None`, a translucent one flattened onto white.

@@ -1,6 +1,6 @@
 //! Colour tables: every colour exactly when there are at most 256, else a `NeuQuant` palette
-//! trained on a sample of the pixels (of all frames for the global table, of one frame for a
-//! local one), dithered against (see [`super::dither`]).
+//! trained on a sample of the pixels (of all frames for the global table, of a run of frames
+//! for a local one), dithered against (see [`super::dither`]).
 
 use std::collections::BTreeSet;
 
@@ -15,8 +15,10 @@ pub(super) const NEUQUANT_SAMPLEFAC: i32 = 1;
 pub(super) struct FrameColours {
     /// Its distinct colours, `None` when there are more than 256.
     pub(super) distinct: Option<FxHashSet<[u8; 3]>>,
-    /// A sample of its pixels as opaque RGBA.
+    /// A sample of its pixels as opaque RGBA, for the global table.
     pub(super) sample: Vec<u8>,
+    /// Another, for the local table of its run of frames (see `LocalTables`).
+    pub(super) run_sample: Vec<u8>,
 }
 
 /// A colour table (the animation's global one, or a frame's local one) and how to find a
@@ -37,15 +39,6 @@ enum Lookup {
 }
 
 impl Palette {
-    /// The exact colours of `stats` when there are at most 256 of them, else a `NeuQuant`
-    /// palette trained on their pixel samples together.
-    pub(super) fn build(stats: &[FrameColours]) -> Palette {
-        Palette::exact(stats).unwrap_or_else(|| {
-            let sample: Vec<u8> = stats.iter().flat_map(|s| &s.sample).copied().collect();
-            Palette::trained(&sample, NEUQUANT_SAMPLEFAC)
-        })
-    }
-
     /// The colours of `stats` as an exact table, when there are at most 256 in all.
     pub(super) fn exact(stats: &[FrameColours]) -> Option<Palette> {
         let mut all = BTreeSet::new();
