@@ -37,7 +37,7 @@ pub use pair::ArtworkPair;
 pub use reach::{within_reach, FarPath, REACH};
 pub use scene::flatten_tolerance;
 pub(crate) use texture::RASTER_SPLIT;
-pub use texture::{DecodedImage, ImageGrid, ImagePiece};
+pub use texture::{DecodedImage, ImageGrid, ImagePiece, Texels};
 
 #[cfg(test)]
 pub(crate) use bind::tests as bind_tests;

@@ -303,12 +303,14 @@ pub fn encode_png(pixmap: &Pixmap) -> Result<Vec<u8>> {
 /// at `t`: the pixel form of the SVG frame's two groups.
 pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
     let (a, b) = super::dissolve(t);
-    let (a, b) = (a as f32, b as f32);
-    // The two products per channel, by byte value, tabulated: `b·y` and the below's weight
-    // `(1 − b·yₐ/255)·a`, the same f32 operations in the same order as per pixel, so the
-    // bytes are those of the plain formula.
-    let by: [f32; 256] = std::array::from_fn(|v| b * v as f32);
-    let keep: [f32; 256] = std::array::from_fn(|v| (1.0 - b * v as f32 / 255.0) * a);
+    // In 16-bit fixed point: `b` and the below's weight `(1 − b·yₐ/255)·a` by the above's
+    // alpha, each rounded to 1/65536. Per channel `b·y + keep·x ≤ 255` in exact arithmetic
+    // (premultiplied `y ≤ yₐ`), and the weights' rounding adds at most `(x + y)/2¹⁷`, so the
+    // rounded result stays a byte: no clamp, and at most one level from the real formula.
+    const ONE: f64 = 65536.0;
+    let bq = (b * ONE).round() as u32;
+    let keep: [u32; 256] =
+        std::array::from_fn(|v| ((1.0 - b * v as f64 / 255.0) * a * ONE).round() as u32);
     // In parallel by bands of rows: the pixels are independent.
     const BAND: usize = 1 << 16;
     use rayon::prelude::*;
@@ -323,9 +325,7 @@ pub(crate) fn blend_into(s: &mut Pixmap, d: &Pixmap, t: f64) {
                 }
                 let cover = keep[y[3] as usize];
                 for k in 0..4 {
-                    // Non-negative, so adding ½ and truncating (the cast saturates at 255)
-                    // rounds to nearest without a call to `round`.
-                    x[k] = (by[y[k] as usize] + cover * x[k] as f32 + 0.5) as u8;
+                    x[k] = ((bq * y[k] as u32 + cover * x[k] as u32 + (1 << 15)) >> 16) as u8;
                 }
             }
         });

@@ -13,7 +13,7 @@
 //! [`BORDER_DILATION`] pixels (the texture's edge texels extended), then composited through an
 //! antialiased mask of the undilated outline.
 
-use crate::artwork::{ImageGrid, ImageItem};
+use crate::artwork::{ImageGrid, ImageItem, Texels};
 use crate::geometry::Point;
 use kurbo::Affine;
 use tiny_skia::{FillRule, Mask, PathBuilder, Pixmap, Transform};
@@ -22,10 +22,10 @@ use tiny_skia::{FillRule, Mask, PathBuilder, Pixmap, Transform};
 /// outline mask cuts it back.
 const BORDER_DILATION: f64 = 1.5;
 
-/// The image's pixels decoded (premultiplied), once per image: rendered by resvg at its natural
+/// The image's texels decoded (premultiplied), once per image: rendered by resvg at its natural
 /// size with nearest-neighbour sampling, which reproduces every pixel exactly and decodes every
 /// format usvg accepts (PNG, JPEG, GIF, WebP). `None` when it cannot be decoded.
-pub(crate) fn decoded(img: &ImageItem) -> Option<std::sync::Arc<Pixmap>> {
+pub(crate) fn decoded(img: &ImageItem) -> Option<std::sync::Arc<Texels>> {
     img.pixels.get_or_decode(|| {
         let (w, h) = image_size(&img.data)?;
         let svg = format!(
@@ -44,7 +44,7 @@ pub(crate) fn decoded(img: &ImageItem) -> Option<std::sync::Arc<Pixmap>> {
         let tree = usvg::Tree::from_str(&svg, &opts).ok()?;
         let mut pixmap = Pixmap::new(w, h)?;
         resvg::render(&tree, Transform::identity(), &mut pixmap.as_mut());
-        Some(pixmap)
+        Some(Texels::from_pixmap(&pixmap))
     })
 }
 
@@ -97,13 +97,13 @@ pub(crate) fn draw_image(
     // Image pixels → texels of the decoded image (its natural size may differ from the size
     // the SVG gives it).
     let to_texel = Affine::scale_non_uniform(
-        texture.width() as f64 / img.width,
-        texture.height() as f64 / img.height,
+        texture.width as f64 / img.width,
+        texture.height as f64 / img.height,
     );
     let sampler = Sampler {
-        texels: texture.data(),
-        width: texture.width() as i32,
-        height: texture.height() as i32,
+        texels: &texture.lanes,
+        width: texture.width as i32,
+        height: texture.height as i32,
         nearest: img.pixelated,
     };
     let mut target = Target {
@@ -144,8 +144,24 @@ pub(crate) fn draw_image(
 }
 
 /// `pixels ← pixels · mask` (premultiplied RGBA8, 8-bit coverage, rounded), touching only the
-/// pixels the mask does not fully cover.
+/// pixels the mask does not fully cover. The mask is read eight pixels at a time: inside the
+/// outline it is all 255 and outside all 0, so most groups are skipped or cleared whole.
 fn scale_by_mask(pixels: &mut [u8], mask: &[u8]) {
+    const GROUP: usize = 8;
+    let mut px = pixels.chunks_exact_mut(4 * GROUP);
+    let mut ms = mask.chunks_exact(GROUP);
+    for (p, m) in (&mut px).zip(&mut ms) {
+        match <[u8; GROUP]>::try_from(m).map(u64::from_ne_bytes) {
+            Ok(u64::MAX) => {}
+            Ok(0) => p.fill(0),
+            _ => scale_pixels(p, m),
+        }
+    }
+    scale_pixels(px.into_remainder(), ms.remainder());
+}
+
+/// [`scale_by_mask`] pixel by pixel.
+fn scale_pixels(pixels: &mut [u8], mask: &[u8]) {
     for (p, &m) in pixels.chunks_exact_mut(4).zip(mask) {
         match m {
             255 => {}
@@ -208,45 +224,53 @@ const FRAC: u32 = 16;
 /// One texel in fixed point.
 const ONE: i64 = 1 << FRAC;
 
-/// Premultiplied RGBA8 texels, sampled with clamping to the edge.
+/// Premultiplied RGBA8 texels ([`Texels`] lanes), sampled with clamping to the edge.
 struct Sampler<'a> {
-    texels: &'a [u8],
+    texels: &'a [u64],
     width: i32,
     height: i32,
     nearest: bool,
 }
 
 impl Sampler<'_> {
-    /// Texel `(x, y)` clamped to the image, packed as in memory (RGBA, little-endian).
+    /// Texel `(x, y)` clamped to the image, in [`Texels`] lanes.
     #[inline(always)]
-    fn texel(&self, x: i64, y: i64) -> u32 {
+    fn texel(&self, x: i64, y: i64) -> u64 {
         let x = x.clamp(0, self.width as i64 - 1);
         let y = y.clamp(0, self.height as i64 - 1);
-        let i = 4 * (y as usize * self.width as usize + x as usize);
-        match self.texels.get(i..i + 4) {
-            Some(&[r, g, b, a]) => u32::from_le_bytes([r, g, b, a]),
-            _ => 0,
-        }
+        let i = y as usize * self.width as usize + x as usize;
+        self.texels.get(i).copied().unwrap_or(0)
     }
 
-    /// Two horizontally adjacent texels from byte offset `i`, as a pair of packed pixels.
-    #[inline(always)]
-    fn pair(&self, i: usize) -> (u32, u32) {
-        match self.texels.get(i..i + 8) {
-            Some(&[r0, g0, b0, a0, r1, g1, b1, a1]) => (
-                u32::from_le_bytes([r0, g0, b0, a0]),
-                u32::from_le_bytes([r1, g1, b1, a1]),
-            ),
-            _ => (0, 0),
-        }
+    /// Whether the bilinear footprint of every pixel centre in triangle `tri` (output pixels)
+    /// lies inside the image, at texel coordinates `to_texel` of it less `centre`: the
+    /// triangle's corners in texel space lie inside by a margin that covers the corners'
+    /// snapping to 1/256 pixel ([`snap`]) and the fixed-point stepping along a run (under one
+    /// unit of 2⁻¹⁶ texel a pixel). The texel coordinates are affine in the pixel, so the
+    /// pixels inside the triangle map inside the corners' hull.
+    fn holds_footprint(&self, tri: [Point; 3], to_texel: Affine, centre: f64) -> bool {
+        let [m0, m1, m2, m3, _, _] = to_texel.as_coeffs();
+        let (lo, hi) = tri
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.x), hi.max(p.x))
+            });
+        let run = (hi - lo).max(0.0) + 2.0;
+        let margin = 1e-3 + (m0.abs() + m1.abs() + m2.abs() + m3.abs()) / 128.0 + run / ONE as f64;
+        let (w, h) = ((self.width - 1) as f64, (self.height - 1) as f64);
+        tri.iter().all(|p| {
+            let q = to_texel * kurbo::Point::new(p.x, p.y);
+            let (u, v) = (q.x - centre, q.y - centre);
+            u >= margin && u <= w - margin && v >= margin && v <= h - margin
+        })
     }
 
     /// Fills `out` (packed RGBA8 pixels of one row) with the colours at fixed-point texel
     /// coordinates `(fu, fv) + k·(su, sv)` ([`FRAC`] bits) for its pixels `k`, the texel
     /// centres at half integers already subtracted for bilinear sampling: bilinear with 8-bit
-    /// weights, two channels at a time in 16-bit lanes, or the texel under each when
-    /// pixelated. A run whose every bilinear footprint lies inside the image (checked at its
-    /// two ends: the coordinates are linear along it) skips the clamping.
+    /// weights, or the texel under each when pixelated. A run whose every bilinear footprint
+    /// lies inside the image (checked at its two ends: the coordinates are linear along it)
+    /// skips the clamping.
     #[inline(always)]
     fn run(&self, mut fu: i64, mut fv: i64, su: i64, sv: i64, out: &mut [u8]) {
         let n = (out.len() / 4) as i64;
@@ -255,7 +279,8 @@ impl Sampler<'_> {
         }
         if self.nearest {
             for px in out.chunks_exact_mut(4) {
-                px.copy_from_slice(&self.texel(fu >> FRAC, fv >> FRAC).to_le_bytes());
+                let texel = Texels::gather(self.texel(fu >> FRAC, fv >> FRAC));
+                px.copy_from_slice(&texel.to_le_bytes());
                 fu += su;
                 fv += sv;
             }
@@ -263,19 +288,9 @@ impl Sampler<'_> {
         }
         let (eu, ev) = (fu + su * (n - 1), fv + sv * (n - 1));
         let inside = |lo: i64, hi: i64, size: i32| lo >= 0 && hi < (size as i64 - 1) << FRAC;
-        let stride = 4 * self.width as usize;
         if inside(fu.min(eu), fu.max(eu), self.width) && inside(fv.min(ev), fv.max(ev), self.height)
         {
-            for px in out.chunks_exact_mut(4) {
-                let (x, y) = ((fu >> FRAC) as usize, (fv >> FRAC) as usize);
-                let (fx, fy) = weights(fu, fv);
-                let i = 4 * x + stride * y;
-                let (a, b) = self.pair(i);
-                let (c, d) = self.pair(i + stride);
-                px.copy_from_slice(&bilinear(a, b, c, d, fx, fy).to_le_bytes());
-                fu += su;
-                fv += sv;
-            }
+            inner_run(self.texels, self.width as usize, (fu, fv), (su, sv), out);
             return;
         }
         for px in out.chunks_exact_mut(4) {
@@ -290,6 +305,26 @@ impl Sampler<'_> {
     }
 }
 
+/// [`Sampler::run`] for a run whose every bilinear footprint lies inside the image (`width`
+/// texels a row), with no clamping. Kept out of line, so the loop has the registers to itself.
+#[inline(never)]
+fn inner_run(texels: &[u64], width: usize, start: (i64, i64), step: (i64, i64), out: &mut [u8]) {
+    let ((mut fu, mut fv), (su, sv)) = (start, step);
+    for px in out.chunks_exact_mut(4) {
+        let (x, y) = ((fu >> FRAC) as usize, (fv >> FRAC) as usize);
+        let (fx, fy) = weights(fu, fv);
+        let i = x + width * y;
+        let (Some(&[a, b]), Some(&[c, d])) =
+            (texels.get(i..i + 2), texels.get(i + width..i + width + 2))
+        else {
+            return;
+        };
+        px.copy_from_slice(&bilinear(a, b, c, d, fx, fy).to_le_bytes());
+        fu += su;
+        fv += sv;
+    }
+}
+
 /// The 8-bit bilinear weights of fixed-point coordinates (their fractions' top bits).
 #[inline(always)]
 fn weights(fu: i64, fv: i64) -> (u32, u32) {
@@ -297,18 +332,16 @@ fn weights(fu: i64, fv: i64) -> (u32, u32) {
     (((fu >> SHIFT) & 0xff) as u32, ((fv >> SHIFT) & 0xff) as u32)
 }
 
-/// The bilinear mix of packed texels `a b` (top row) and `c d` with 8-bit weights `fx`, `fy`
-/// (toward `b`/`d` and `c`/`d`), two channels at a time in 16-bit lanes.
+/// The bilinear mix, as a packed RGBA8 pixel, of texels `a b` (top row) and `c d` in
+/// [`Texels`] lanes with 8-bit weights `fx`, `fy` (toward `b`/`d` and `c`/`d`): all four
+/// channels at once, each lane `(p·(256 − f) + q·f + 128) >> 8`, which stays below 2¹⁶.
 #[inline(always)]
-fn bilinear(a: u32, b: u32, c: u32, d: u32, fx: u32, fy: u32) -> u32 {
-    let lerp = |p: u32, q: u32, f: u32| -> u32 {
-        const LANES: u32 = 0x00ff_00ff;
-        let (g, h) = (256 - f, f);
-        let even = ((p & LANES) * g + (q & LANES) * h + 0x0080_0080) >> 8;
-        let odd = (((p >> 8) & LANES) * g + ((q >> 8) & LANES) * h + 0x0080_0080) >> 8;
-        (even & LANES) | ((odd & LANES) << 8)
+fn bilinear(a: u64, b: u64, c: u64, d: u64, fx: u32, fy: u32) -> u32 {
+    let lerp = |p: u64, q: u64, f: u32| -> u64 {
+        let (g, h) = (256 - f as u64, f as u64);
+        ((p * g + q * h + 0x0080_0080_0080_0080) >> 8) & Texels::LANES
     };
-    lerp(lerp(a, b, fx), lerp(c, d, fx), fy)
+    Texels::gather(lerp(lerp(a, b, fx), lerp(c, d, fx), fy))
 }
 
 /// The layer the triangles are filled into (premultiplied RGBA8, replaced, not blended:
@@ -345,6 +378,20 @@ fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler
     let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
     let centre = if sampler.nearest { 0.0 } else { 0.5 };
     let (su, sv) = (fixed(m0), fixed(m1));
+    if !sampler.nearest && sampler.holds_footprint(tri, to_texel, centre) {
+        // Every covered pixel's footprint is inside the image, and its coordinates are small
+        // (no clamp needed before the fixed-point cast): each run goes straight to the loop.
+        covered_runs(tri, target.width, target.height, |y, l, r| {
+            let (px, py) = (l as f64 + 0.5, y as f64 + 0.5);
+            let u = m0 * px + m2 * py + m4 - centre;
+            let v = m1 * px + m3 * py + m5 - centre;
+            let row = (y * target.width) as usize;
+            let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize)];
+            let start = ((u * ONE as f64) as i64, (v * ONE as f64) as i64);
+            inner_run(sampler.texels, sampler.width as usize, start, (su, sv), out);
+        });
+        return;
+    }
     covered_runs(tri, target.width, target.height, |y, l, r| {
         let (px, py) = (l as f64 + 0.5, y as f64 + 0.5);
         let u = m0 * px + m2 * py + m4 - centre;
@@ -550,12 +597,76 @@ mod tests {
     }
 
     #[test]
+    fn bilinear_in_lanes_is_the_mix_of_each_channel() {
+        // Every channel of the lane arithmetic against the plain two-step mix, for random
+        // texels and weights, and for the extremes (all 0 and all 255 at full weight).
+        let mut state = 0x5eed_u64;
+        let mut byte = || (jitter(&mut state) * 256.0) as u32;
+        let mut cases: Vec<([u32; 4], u32, u32)> = vec![
+            ([u32::MAX; 4], 255, 255),
+            ([u32::MAX; 4], 0, 0),
+            ([0, u32::MAX, 0, u32::MAX], 255, 128),
+        ];
+        for _ in 0..2000 {
+            let texel = |b: &mut dyn FnMut() -> u32| b() | b() << 8 | b() << 16 | b() << 24;
+            let quad = [
+                texel(&mut byte),
+                texel(&mut byte),
+                texel(&mut byte),
+                texel(&mut byte),
+            ];
+            cases.push((quad, byte(), byte()));
+        }
+        for ([a, b, c, d], fx, fy) in cases {
+            let got = bilinear(
+                Texels::spread(a),
+                Texels::spread(b),
+                Texels::spread(c),
+                Texels::spread(d),
+                fx,
+                fy,
+            );
+            for k in 0..4 {
+                let ch = |p: u32| (p >> (8 * k)) & 0xff;
+                let mix = |p: u32, q: u32, f: u32| (p * (256 - f) + q * f + 128) >> 8;
+                let want = mix(mix(ch(a), ch(b), fx), mix(ch(c), ch(d), fx), fy);
+                assert_eq!(
+                    ch(got),
+                    want,
+                    "channel {k} of {a:08x} {b:08x} {c:08x} {d:08x}"
+                );
+            }
+            assert_eq!(Texels::gather(Texels::spread(a)), a);
+        }
+    }
+
+    #[test]
+    fn scaling_by_the_mask_in_groups_is_scaling_each_pixel() {
+        // A mask of whole groups of 255 and of 0, and partial groups, over a row whose
+        // length is not a multiple of the group.
+        let n = 8 * 7 + 5;
+        let mask: Vec<u8> = (0..n)
+            .map(|i| match i / 8 {
+                0 | 3 => 255,
+                1 | 5 => 0,
+                _ => (i * 37 % 256) as u8,
+            })
+            .collect();
+        let pixels: Vec<u8> = (0..4 * n).map(|i| (i * 11 % 256) as u8).collect();
+        let (mut grouped, mut single) = (pixels.clone(), pixels);
+        scale_by_mask(&mut grouped, &mask);
+        scale_pixels(&mut single, &mask);
+        assert_eq!(grouped, single);
+        assert!(grouped[4 * 8..4 * 16].iter().all(|&c| c == 0));
+    }
+
+    #[test]
     fn a_run_samples_like_the_texels_it_lands_on() {
         // A 4 × 1 texture of grey levels; the run steps half a texel per pixel from the first
         // texel's centre, so it meets each centre (exact texel) and each midpoint (the mean).
-        let texels: Vec<u8> = [0u8, 100, 200, 250]
+        let texels: Vec<u64> = [0u8, 100, 200, 250]
             .iter()
-            .flat_map(|&g| [g, g, g, 255])
+            .map(|&g| Texels::spread(u32::from_le_bytes([g, g, g, 255])))
             .collect();
         let sampler = Sampler {
             texels: &texels,
