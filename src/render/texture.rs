@@ -443,30 +443,26 @@ fn covered_runs(tri: [Point; 3], width: i64, height: i64, mut run: impl FnMut(i6
         let start = dy * (cx - p.0) - dx * (cy - p.1) - i64::from(!top_left);
         (start, dy * unit, -dx * unit)
     };
-    let edges = [edge(a, b), edge(b, c), edge(c, a)];
-    let mut row_start = edges.map(|(start, _, _)| start);
+    let [(mut e0, s0, d0), (mut e1, s1, d1), (mut e2, s2, d2)] =
+        [edge(a, b), edge(b, c), edge(c, a)];
+    // A centre is inside when no edge function is negative: when the three's bitwise OR has
+    // no sign bit.
     for y in y0..=y1 {
-        let mut e = row_start;
+        let (mut f0, mut f1, mut f2) = (e0, e1, e2);
         let mut l = x0;
-        while l <= x1 && e.iter().any(|&v| v < 0) {
-            for k in 0..3 {
-                e[k] += edges[k].1;
-            }
+        while l <= x1 && (f0 | f1 | f2) < 0 {
+            (f0, f1, f2) = (f0 + s0, f1 + s1, f2 + s2);
             l += 1;
         }
         let mut r = l;
-        while r <= x1 && e.iter().all(|&v| v >= 0) {
-            for k in 0..3 {
-                e[k] += edges[k].1;
-            }
+        while r <= x1 && (f0 | f1 | f2) >= 0 {
+            (f0, f1, f2) = (f0 + s0, f1 + s1, f2 + s2);
             r += 1;
         }
         if l < r {
             run(y, l, r);
         }
-        for k in 0..3 {
-            row_start[k] += edges[k].2;
-        }
+        (e0, e1, e2) = (e0 + d0, e1 + d1, e2 + d2);
     }
 }
 
