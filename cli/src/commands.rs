@@ -5,14 +5,15 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use crmorph::artwork::{Rgba, Scene};
-use crmorph::auto::geometric::MorphingPath;
-use crmorph::compatible::{build, Compatible, MorphOptions};
+use crmorph::artwork::Rgba;
 use crmorph::drawing::{ControlIds, Drawing, ReadOptions};
 use crmorph::export::{Easing, Export, Morph, Motion, Playback, Timeline};
-use crmorph::render::{encode_png, FrameOptions, Padding};
-use crmorph::rigid::{Interpolator, Method};
-use crmorph::skeleton::{pose_svg, Pose, Skeleton, SkeletonControl};
+use crmorph::morpher::{Morpher, Prepared, Side, View};
+use crmorph::render::{encode_png, Padding};
+use crmorph::rigid::Method;
+use crmorph::skeleton::{pose_svg, Skeleton, SkeletonControl};
+
+pub(crate) use crmorph::morpher::Shapes;
 
 use crate::output::{refuse_overwriting_inputs, write_atomic, write_streamed, Format, FramesDir};
 use crate::progress::Progress;
@@ -214,9 +215,6 @@ pub(crate) enum ViewArg {
     /// Exactly the source's viewBox.
     Source,
 }
-
-/// Times at which `--view fit` measures what the morph draws.
-const FIT_SAMPLES: usize = 32;
 
 fn parse_padding(s: &str) -> std::result::Result<Padding, String> {
     let (num, percent) = match s.strip_suffix('%') {
@@ -444,89 +442,39 @@ fn read_image_with_controls(
     Ok(Drawing::from_str(&name, &text, opts)?)
 }
 
-/// The two drawings (with automatic control geometry when unmarked), their compatible
-/// triangulation, and in automatic mode the artwork paths that morph as one shape and the
-/// shape counts of its report.
-type Prepared = (
-    Drawing,
-    Drawing,
-    Compatible,
-    Vec<MorphingPath>,
-    Option<AutoCounts>,
-);
-
-/// What automatic mode paired, in counts (from [`crmorph::auto::AutoReport`]), for `crmorph
-/// batch`'s report: whether a morph is crisp (shapes move) or cross-fades.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct AutoCounts {
-    /// Pairs of shapes that morph into each other.
-    pub(crate) shapes: usize,
-    /// Shapes without a partner (they grow or shrink, they do not cross-fade).
-    pub(crate) lone: usize,
-    /// Paths with a paired shape that still cross-fade.
-    pub(crate) blended: usize,
-}
-
-/// How the artwork of a morph moves, for `crmorph batch`'s report.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Shapes {
-    /// Automatic mode's counts; `None` for marked-up drawings (a boundary or feature curves).
-    pub(crate) auto: Option<AutoCounts>,
-    /// Artwork paths that morph as one path (unblended) in the frames.
-    pub(crate) morphing: usize,
-}
-
-fn compatible(inputs: &Inputs, progress: &Progress) -> Result<Prepared> {
+/// The library's front door for the two drawings of `inputs` (read here, with `--controls`
+/// merged in), with the choices `inputs` makes: which side is triangulated, the density, the
+/// skeleton id for messages.
+fn morpher(inputs: &Inputs, progress: &Progress) -> Result<Morpher> {
     let mut read: Vec<&Path> = vec![&inputs.source, &inputs.target];
     read.extend(inputs.controls.iter().flatten().map(PathBuf::as_path));
     refuse_overwriting_inputs(&inputs.output, &read)?;
     progress.stage("reading drawings");
     let (s, t) = read_both(inputs)?;
-    // Ids that almost follow a convention are plain artwork; say so before anything they cause.
-    for d in [&s, &t] {
-        for n in &d.controls.near_misses {
-            progress.note(&format!("{}: {}", d.file, n.note()));
-        }
-        for n in &d.notes {
-            progress.note(n);
-        }
-    }
-    let mut opts = MorphOptions::default();
-    opts.from_target = inputs.reading.from == From::Target;
-    opts.density = inputs.reading.density;
-    progress.stage("compatible triangulation");
-    if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
-        // Plain SVGs: control geometry from the artwork (automatic mode).
-        let (ss, ts) = (scene(&s)?, scene(&t)?);
-        let (c, report, s, t) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &opts)?;
-        progress.note(&format!("{}: {report}", inputs.source.display()));
-        let counts = AutoCounts {
-            shapes: report.shapes.len(),
-            lone: report.lone.len(),
-            blended: report.blended,
-        };
-        return Ok((s, t, c, report.morphing, Some(counts)));
-    }
-    let c = build(&s, &t, &opts)?;
-    Ok((s, t, c, Vec::new(), None))
+    let side = match inputs.reading.from {
+        From::Source => Side::Source,
+        From::Target => Side::Target,
+    };
+    Ok(Morpher::new(s, t)
+        .triangulate(side)
+        .density(inputs.reading.density)
+        .skeleton_id(&inputs.reading.skeleton_id))
 }
 
-/// A drawing's artwork, its images read under the drawing's input policy.
-fn scene(d: &Drawing) -> Result<Scene> {
-    Ok(Scene::from_drawing(d)?)
+/// The front door's progress reports on the CLI's progress display.
+fn report(progress: &Progress) -> impl FnMut(crmorph::morpher::Progress) + '_ {
+    |p| match p {
+        crmorph::morpher::Progress::Stage(s) => progress.stage(s),
+        crmorph::morpher::Progress::Note(n) => progress.note(n),
+    }
 }
 
-/// The interpolator of `method` for the meshes (the disc method keeping the area of
-/// `c.area_region` when set), its errors naming the two inputs.
-fn interpolator(inputs: &Inputs, method: MethodArg, c: &Compatible) -> Result<Interpolator> {
-    c.interpolator(method.method()).map_err(|e| {
-        e.in_file(format!(
-            "{} → {}",
-            inputs.source.display(),
-            inputs.target.display()
-        ))
-        .into()
-    })
+/// The two drawings of `inputs` and their compatible triangulation
+/// ([`Morpher::prepare`]), with the front door that made it.
+fn compatible(inputs: &Inputs, progress: &Progress) -> Result<(Morpher, Prepared)> {
+    let m = morpher(inputs, progress)?;
+    let prepared = m.prepare(&mut report(progress))?;
+    Ok((m, prepared))
 }
 
 /// Runs `inspect`.
@@ -536,7 +484,14 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
         &[Format::Svg, Format::Png, Format::Json],
         "inspect",
     )?;
-    let (s, _, c, _, _) = compatible(&a.inputs, progress)?;
+    let (
+        _,
+        Prepared {
+            source: s,
+            compatible: c,
+            ..
+        },
+    ) = compatible(&a.inputs, progress)?;
     // The reference skeleton, if the source has one, and where the target mesh carries it.
     let skeleton = if s.controls.skeleton.is_empty() {
         None
@@ -569,52 +524,36 @@ pub(crate) fn inspect(a: &InspectArgs, progress: &Progress) -> Result<()> {
     write_atomic(&a.inputs.output, &bytes)
 }
 
-/// The motion of the mesh: the interpolator of `method`, or skeleton control when poses are
-/// given (or `always_skeleton`, for `crmorph skeleton`).
-fn motion(
+/// `m` with the method and the poses of `steering` (read here), or skeleton control always
+/// (`crmorph skeleton`). Usage errors for poses the method cannot take and for two at one time.
+fn steered(
+    m: Morpher,
     inputs: &Inputs,
     method: MethodArg,
     steering: &Steering,
     always_skeleton: bool,
-    source: &Drawing,
-    c: &Compatible,
-) -> Result<Motion> {
-    if steering.poses.is_empty() && !always_skeleton {
-        return Ok(interpolator(inputs, method, c)?.into());
-    }
-    if method != MethodArg::Disc {
+) -> Result<Morpher> {
+    if !steering.poses.is_empty() && method != MethodArg::Disc {
         return Err(Usage("--pose steers the disc method only; leave out --method".into()).into());
     }
-    if source.controls.skeleton.is_empty() {
-        bail!(
-            "{}: has no skeleton (polylines with id '{}' or '{}-NAME'); skeleton control needs one \
-             on the source drawing",
-            inputs.source.display(),
-            inputs.reading.skeleton_id,
-            inputs.reading.skeleton_id
-        );
-    }
-    let skeleton =
-        Skeleton::from_chains(&source.file, &source.controls.skeleton, c.tolerances.snap)?;
-    let mut poses = Vec::with_capacity(steering.poses.len());
-    for (t, file) in &steering.poses {
-        refuse_overwriting_inputs(&inputs.output, &[file])?;
-        let pose = Drawing::open(file, &read_options(inputs))?;
-        let joints = skeleton.pose_from_chains(&pose.file, &pose.controls.skeleton)?;
-        if poses.iter().any(|p: &Pose| (p.t - t).abs() < 1e-9) {
+    let mut m = m.method(method.method()).always_skeleton(always_skeleton);
+    for (k, (t, file)) in steering.poses.iter().enumerate() {
+        if steering.poses[..k]
+            .iter()
+            .any(|(u, _)| (u - t).abs() < 1e-9)
+        {
             return Err(Usage(format!("two poses at t = {t}")).into());
         }
-        poses.push(Pose { t: *t, joints });
+        refuse_overwriting_inputs(&inputs.output, &[file])?;
+        m = m.pose(*t, Drawing::open(file, &read_options(inputs))?);
     }
-    Ok(SkeletonControl::new(&c.meshes, skeleton, &poses)
-        .map_err(|e| e.in_file(inputs.source.display().to_string()))?
-        .into())
+    Ok(m)
 }
 
-/// Reads both drawings' artwork and binds it to the meshes with the motion of `method` and
-/// `steering`. With `raster`, the frame size (the drawing's own or `--size`, and again after
-/// `--view fit` grew it) is checked against `--max-pixels` before any work at that size.
-/// Returns the morph and how its artwork moves.
+/// Reads both drawings and makes their morph through the front door with the motion of
+/// `method` and `steering` and the look of `look`. With `raster`, the frame size (the
+/// drawing's own or `--size`, and again after `--view fit` grew it) is checked against
+/// `--max-pixels` before any work at that size. Returns the morph and how its artwork moves.
 fn build_morph(
     inputs: &Inputs,
     method: MethodArg,
@@ -624,51 +563,24 @@ fn build_morph(
     raster: bool,
     progress: &Progress,
 ) -> Result<(Morph, Shapes)> {
-    let (s, t, c, paths, auto) = compatible(inputs, progress)?;
-    progress.stage("interpolation");
-    let motion = motion(inputs, method, steering, always_skeleton, &s, &c)?;
-    progress.stage("binding the artwork");
-    let (ss, ts) = (scene(&s)?, scene(&t)?);
-    let mut opts = FrameOptions::for_scene(&ss);
-    if let Some((w, h)) = look.size {
-        opts.size = (w, h);
-    }
-    opts.background = look.background;
-    opts.max_pixels = inputs.reading.safety.policy().limits.pixels;
-    let source_file = inputs.source.display().to_string();
-    if raster {
-        opts.check_pixels(&source_file)?;
-    }
-    // Paths morphing as one shape follow the plain interpolation's mesh; with the disc
-    // method only (the baselines are for comparing the mesh motion). In marked-up drawings
-    // they are the artwork paths that are their own boundary or feature curve.
-    let paths = if method != MethodArg::Disc {
-        Vec::new()
-    } else if paths.is_empty() {
-        crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c)
-    } else {
-        paths
+    let m = steered(
+        morpher(inputs, progress)?,
+        inputs,
+        method,
+        steering,
+        always_skeleton,
+    )?;
+    let view = match look.view {
+        ViewArg::Fit => View::Fit,
+        ViewArg::Source => View::Source,
     };
-    let shapes = Shapes {
-        auto,
-        morphing: paths.len(),
-    };
-    let mut morph = Morph::with_morphing_paths(c.meshes, motion, &ss, &ts, opts, paths)?;
-    let drawn = match look.view {
-        ViewArg::Fit => {
-            let ts: Vec<f64> = (0..=FIT_SAMPLES)
-                .map(|k| k as f64 / FIT_SAMPLES as f64)
-                .collect();
-            morph.drawn_bounds(&ts)?
-        }
-        ViewArg::Source => None,
-    };
-    let fitted = morph.frame_options().fitted(drawn, look.padding, look.size);
-    if raster {
-        fitted.check_pixels(&source_file)?;
-    }
-    morph.set_frame_options(fitted);
-    Ok((morph, shapes))
+    let m = m
+        .size(look.size)
+        .background(look.background)
+        .view(view)
+        .padding(look.padding)
+        .raster(raster);
+    Ok(m.build_with(&mut report(progress))?)
 }
 
 /// Runs `frame`.
@@ -679,12 +591,15 @@ pub(crate) fn frame(a: &FrameArgs, progress: &Progress) -> Result<()> {
         "frame",
     )?;
     let bytes = if fmt == Format::Json {
-        let (s, _, c, _, _) = compatible(&a.inputs, progress)?;
+        let (m, prepared) = compatible(&a.inputs, progress)?;
         progress.stage("interpolation");
         // With a skeleton in the source, the frame carries it (always through skeleton
         // control, which without poses is the plain disc interpolation).
-        let has_skeleton = !s.controls.skeleton.is_empty() && a.method == MethodArg::Disc;
-        let mv = motion(&a.inputs, a.method, &a.steering, has_skeleton, &s, &c)?;
+        let has_skeleton =
+            !prepared.source.controls.skeleton.is_empty() && a.method == MethodArg::Disc;
+        let m = steered(m, &a.inputs, a.method, &a.steering, has_skeleton)?;
+        let mv = m.motion(&prepared)?;
+        let c = &prepared.compatible;
         let v = mv.at_vec(a.at);
         let skeleton = match &mv {
             Motion::Skeleton(control) => {

@@ -3,12 +3,10 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use crmorph::artwork::{Rgba, Scene};
-use crmorph::compatible::{build, MorphOptions};
-use crmorph::drawing::{Drawing, ReadOptions};
-use crmorph::export::{Easing, Morph, Playback, Timeline};
-use crmorph::render::{encode_png, FrameOptions};
-use crmorph::rigid::{Interpolator, Method};
+use crmorph::artwork::Rgba;
+use crmorph::export::{Easing, Playback, Timeline};
+use crmorph::render::encode_png;
+use crmorph::Morpher;
 
 use crate::output::write_atomic;
 use crate::progress::Progress;
@@ -29,34 +27,32 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
     let started = std::time::Instant::now();
     std::fs::create_dir_all(dir)
         .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
-    let opts = ReadOptions::default();
     progress.stage("reading the bundled gourd");
-    let s = Drawing::from_str("gourd/source.svg", SOURCE, &opts)?;
-    let t = Drawing::from_str("gourd/target.svg", TARGET, &opts)?;
-    progress.stage("compatible triangulation");
-    let c = build(&s, &t, &MorphOptions::default())?;
-    let inspect = crmorph::inspect::inspect_svg(&c);
+    let white = Rgba {
+        r: 255,
+        g: 255,
+        b: 255,
+        a: 255,
+    };
+    // The same front door as `crmorph morph`: the gourd's skin and leaf are their own
+    // boundary and features, so they morph as one shape.
+    let m = Morpher::from_svg(("gourd/source.svg", SOURCE), ("gourd/target.svg", TARGET))?
+        .background(Some(white))
+        .raster(true);
+    let mut report = |p: crmorph::morpher::Progress| match p {
+        crmorph::morpher::Progress::Stage(s) => progress.stage(s),
+        crmorph::morpher::Progress::Note(n) => progress.note(n),
+    };
+    let prepared = m.prepare(&mut report)?;
+    let c = &prepared.compatible;
+    let inspect = crmorph::inspect::inspect_svg(c);
     let (vertices, triangles, curves, steps) = (
         c.meshes.source.len(),
         c.meshes.triangles.len(),
         c.meshes.curves.len(),
         c.stats.steps,
     );
-    progress.stage("interpolation");
-    let m = &c.meshes;
-    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles)?;
-    let ss = Scene::from_svg("gourd/source.svg", SOURCE, "controls")?;
-    let ts = Scene::from_svg("gourd/target.svg", TARGET, "controls")?;
-    let mut frame = FrameOptions::for_scene(&ss);
-    frame.background = Some(Rgba {
-        r: 255,
-        g: 255,
-        b: 255,
-        a: 255,
-    });
-    // The gourd's skin and leaf are their own boundary and features: they morph as one shape.
-    let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
-    let morph = Morph::with_morphing_paths(c.meshes, interp, &ss, &ts, frame, paths)?;
+    let (morph, _) = m.finish(prepared, &mut report)?;
     let inverted: usize = morph
         .vertex_frames(&TIMELINE)
         .iter()
