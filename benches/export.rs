@@ -6,38 +6,30 @@
 //! Run: `cargo bench --bench export -- --warm-up-time 1 --measurement-time 5`
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use crmorph::artwork::{Rgba, Scene};
-use crmorph::compatible::{build, MorphOptions};
-use crmorph::drawing::{Drawing, ReadOptions};
+use crmorph::artwork::Rgba;
 use crmorph::export::{Morph, Timeline};
-use crmorph::render::{encode_png, FrameOptions};
-use crmorph::rigid::{Interpolator, Method};
+use crmorph::render::encode_png;
+use crmorph::Morpher;
 use std::hint::black_box;
 
 const SOURCE: &str = include_str!("../fixtures/gourd/source.svg");
 const TARGET: &str = include_str!("../fixtures/gourd/target.svg");
 
-/// Everything `crmorph morph` does before writing, from the two files' text.
+/// Everything `crmorph morph` does before writing, from the two files' text: the front door
+/// with the view fitted to the morph, as the CLI makes it.
 fn morph(size: Option<(u32, u32)>) -> Morph {
-    let opts = ReadOptions::default();
-    let s = Drawing::from_str("source.svg", SOURCE, &opts).unwrap();
-    let t = Drawing::from_str("target.svg", TARGET, &opts).unwrap();
-    let c = build(&s, &t, &MorphOptions::default()).unwrap();
-    let m = &c.meshes;
-    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
-    let ss = Scene::from_svg("source.svg", SOURCE, "controls").unwrap();
-    let ts = Scene::from_svg("target.svg", TARGET, "controls").unwrap();
-    let mut frame = FrameOptions::for_scene(&ss);
-    if let Some(size) = size {
-        frame.size = size;
-    }
-    frame.background = Some(Rgba {
+    let white = Rgba {
         r: 255,
         g: 255,
         b: 255,
         a: 255,
-    });
-    Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
+    };
+    Morpher::from_svg(("source.svg", SOURCE), ("target.svg", TARGET))
+        .unwrap()
+        .size(size)
+        .background(Some(white))
+        .build()
+        .unwrap()
 }
 
 fn bench(c: &mut Criterion) {

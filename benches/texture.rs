@@ -6,12 +6,10 @@
 //! Run: `cargo bench --bench texture -- --warm-up-time 1 --measurement-time 5`
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use crmorph::artwork::Scene;
-use crmorph::compatible::{build, MorphOptions};
-use crmorph::drawing::{Drawing, ReadOptions};
+use crmorph::drawing::ReadOptions;
 use crmorph::export::{Morph, Timeline};
-use crmorph::render::FrameOptions;
-use crmorph::rigid::{Interpolator, Method};
+use crmorph::morpher::View;
+use crmorph::Morpher;
 use std::hint::black_box;
 
 /// The picture of `fixtures/textures/turn` (144 × 112 px).
@@ -35,7 +33,10 @@ fn drawing(transform: &str) -> String {
     )
 }
 
-/// The picture scaled to 460 × 358 in the middle → turned by 40°, stretched and squashed.
+/// The picture scaled to 460 × 358 in the middle → turned by 40°, stretched and squashed,
+/// through the front door showing the source's 512 × 512 view. The drawings are read at
+/// density 0.7 and triangulated at density 1: the 1,246-triangle mesh of the figures in
+/// docs/benchmarks-texture.md.
 fn morph() -> Morph {
     let (source, target) = (
         drawing("translate(26 77) scale(3.2)"),
@@ -43,15 +44,13 @@ fn morph() -> Morph {
     );
     let mut opts = ReadOptions::default();
     opts.density = 0.7;
-    let s = Drawing::from_str("source.svg", &source, &opts).unwrap();
-    let t = Drawing::from_str("target.svg", &target, &opts).unwrap();
-    let c = build(&s, &t, &MorphOptions::default()).unwrap();
-    let m = &c.meshes;
-    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
-    let ss = Scene::from_svg("source.svg", &source, "controls").unwrap();
-    let ts = Scene::from_svg("target.svg", &target, "controls").unwrap();
-    let frame = FrameOptions::for_scene(&ss);
-    Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
+    Morpher::read_svg(("source.svg", &source), ("target.svg", &target), &opts)
+        .unwrap()
+        .density(1.0)
+        .view(View::Source)
+        .raster(true)
+        .build()
+        .unwrap()
 }
 
 fn bench(c: &mut Criterion) {

@@ -5,22 +5,21 @@
 use std::path::Path;
 
 use crmorph::export::{Easing, Morph, Playback, Timeline};
+use crmorph::morpher::View;
 use crmorph::render::FrameOptions;
-use crmorph::rigid::{Interpolator, Method};
+use crmorph::rigid::Method;
+use crmorph::Morpher;
 use quick_xml::events::Event;
 
 use crate::common::{compatible, open, pairs, pixels_off_input};
 
-/// The morph of a fixture pair at the source's own size.
+/// The morph of a fixture pair as the CLI makes it (through the front door), showing the
+/// source's own view at its own size.
 pub(crate) fn morph_of(s: &Path, t: &Path) -> Morph {
-    let (ds, dt) = (open(s), open(t));
-    let c = compatible(&ds, &dt, false);
-    let m = &c.meshes;
-    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
-    let scene = crate::common::scene_of;
-    let (ss, ts) = (scene(s), scene(t));
-    let frame = FrameOptions::for_scene(&ss);
-    Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
+    Morpher::new(open(s), open(t))
+        .view(View::Source)
+        .build()
+        .unwrap_or_else(|e| panic!("{}: {e}", s.display()))
 }
 
 /// One SMIL animation element's attributes.

@@ -2,11 +2,10 @@
 //! turn of an image morphs as the image turned rigidly, a solid texture shows no seam, and the
 //! same input gives the same bytes.
 
-use crmorph::compatible::{build, MorphOptions};
-use crmorph::drawing::{Drawing, ReadOptions};
 use crmorph::export::{Morph, Timeline};
-use crmorph::render::{encode_png, FrameOptions};
-use crmorph::rigid::{Interpolator, Method};
+use crmorph::morpher::View;
+use crmorph::render::encode_png;
+use crmorph::Morpher;
 use tiny_skia::{Color, Pixmap, Transform};
 
 /// Image size in pixels (of the picture and the solid textures).
@@ -50,19 +49,14 @@ const SOURCE: &str = "translate(48 64)";
 /// The target: turned by 150° and scaled by 1.3 about the view's centre.
 const TARGET: &str = "translate(120 120) rotate(150) scale(1.3) translate(-72 -56)";
 
+/// The morph as the CLI makes it, through the front door, showing the source's view (the
+/// comparisons below are made in it).
 fn morph(source: &str, target: &str) -> Morph {
-    let opts = ReadOptions::default();
-    let s = Drawing::from_str("source.svg", source, &opts).unwrap();
-    let t = Drawing::from_str("target.svg", target, &opts).unwrap();
-    let c = build(&s, &t, &MorphOptions::default()).unwrap();
-    let m = &c.meshes;
-    let interp = Interpolator::new(Method::Disc, &m.source, &m.target, &m.triangles).unwrap();
-    let scene = |d: &Drawing, text: &str| {
-        crmorph::artwork::Scene::from_svg(&d.file, text, "controls").unwrap()
-    };
-    let (ss, ts) = (scene(&s, source), scene(&t, target));
-    let frame = FrameOptions::for_scene(&ss);
-    Morph::new(c.meshes, interp, &ss, &ts, frame).unwrap()
+    Morpher::from_svg(("source.svg", source), ("target.svg", target))
+        .unwrap()
+        .view(View::Source)
+        .build()
+        .unwrap()
 }
 
 /// The drawing `svg` rendered by resvg at 240 × 240.

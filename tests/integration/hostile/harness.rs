@@ -1,16 +1,13 @@
 //! The pipeline the fuzz target drives and the regression corpus replays: reading → mesh → one
-//! frame, in-process, as the CLI runs it (automatic mode for unmarked pairs, marked-up mode
-//! otherwise; the frame at t = ½ as SVG and as a small PNG).
+//! frame, in-process, through the front door the CLI uses ([`crmorph::Morpher`]: automatic
+//! mode for unmarked pairs, marked-up mode otherwise, the view fitted; the frame at t = ½ as
+//! SVG and as a small PNG).
 //!
 //! Shared by `tests/integration/hostile.rs` and `fuzz/fuzz_targets/pipeline.rs` (included by
 //! path), so that what the fuzzer found is replayed exactly by the tests.
 
-use crmorph::artwork::Scene;
-use crmorph::compatible::{build, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
-use crmorph::export::Morph;
-use crmorph::render::FrameOptions;
-use crmorph::rigid::Method;
+use crmorph::Morpher;
 
 /// The target used when a fuzz input holds one drawing only.
 pub(crate) const CIRCLE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><circle cx="50" cy="50" r="30" fill="blue"/></svg>"#;
@@ -45,20 +42,11 @@ pub(crate) fn morph_once(source: &[u8], target: &[u8]) -> crmorph::Result<()> {
         Drawing::from_str(name, &text, &opts)
     };
     let (s, t) = (read("source.svg", source)?, read("target.svg", target)?);
-    let (ss, ts) = (Scene::from_drawing(&s)?, Scene::from_drawing(&t)?);
-    let morph_opts = MorphOptions::default();
-    let (compatible, paths) = if crmorph::auto::is_unmarked(&s) && crmorph::auto::is_unmarked(&t) {
-        let (c, report, _, _) = crmorph::auto::build_auto(&s, &t, &ss, &ts, &morph_opts)?;
-        (c, report.morphing)
-    } else {
-        let c = build(&s, &t, &morph_opts)?;
-        let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
-        (c, paths)
-    };
-    let motion = compatible.interpolator(Method::Disc)?;
-    let mut frame = FrameOptions::for_scene(&ss);
-    frame.size = (64, 64);
-    let morph = Morph::with_morphing_paths(compatible.meshes, motion, &ss, &ts, frame, paths)?;
+    // The CLI's own path, through the front door; frames small, as a server would make them.
+    let morph = Morpher::new(s, t)
+        .size(Some((64, 64)))
+        .raster(true)
+        .build()?;
     morph.svg_at(0.5)?;
     morph.pixmap_at(0.5)?;
     Ok(())
