@@ -125,6 +125,6 @@ mod tests;
 /// the source in the first half and the uncovered source fades out in the second; each is a
 /// plain group opacity, which every SVG renderer implements alike.
 pub fn dissolve(t: f64) -> (f64, f64) {
-    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let t = crate::rigid::clamp_time(t);
     ((2.0 * (1.0 - t)).min(1.0), (2.0 * t).min(1.0))
 }

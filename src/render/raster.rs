@@ -205,7 +205,7 @@ pub fn frame_pixmap_layers(layers: &[Layer], t: f64, opts: &FrameOptions) -> Res
         Layer::Over(o) => o.file.as_str(),
     });
     opts.check_pixels(file)?;
-    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let t = crate::rigid::clamp_time(t);
     let render = |layer: &Layer| -> Result<Pixmap> {
         match *layer {
             Layer::Blend(s, _) if t == 0.0 => render_scene(s, opts),

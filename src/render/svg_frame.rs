@@ -126,7 +126,7 @@ fn end_tree(layers: &[Layer], source: bool, opts: &FrameOptions) -> Node {
 
 /// The frame at `t` as a tree (see [`frame_svg_layers`]; `Mode::Keyframe` blends at every t).
 pub(crate) fn frame_tree(layers: &[Layer], t: f64, opts: &FrameOptions, mode: Mode) -> Node {
-    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let t = crate::rigid::clamp_time(t);
     if mode == Mode::Still && (t == 0.0 || t == 1.0) {
         return end_tree(layers, t == 0.0, opts);
     }

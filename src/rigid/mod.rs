@@ -86,6 +86,19 @@ enum Kind {
     Linear(Vec<Point>, Vec<Point>, Vec<f64>),
 }
 
+/// The one rule for times outside the morph, shared by every motion (plain interpolation,
+/// skeleton control) and every frame writer: `t` is clamped to [0, 1], so a morph holds the
+/// source before it and the target after it (exactly, §4.1's ends), and NaN counts as 0. No
+/// motion extrapolates: the disc method's rotations past t = 1 would keep turning, the
+/// skeleton's tracks would not, and the two would disagree.
+pub fn clamp_time(t: f64) -> f64 {
+    if t.is_nan() {
+        0.0
+    } else {
+        t.clamp(0.0, 1.0)
+    }
+}
+
 /// An interpolation between two compatible point sets, set up once (local transformations,
 /// consistent rotations, factored normal equations) and evaluated per frame.
 #[derive(Debug)]
@@ -262,6 +275,7 @@ impl Interpolator {
     }
 
     /// Vertices at `t ∈ [0, 1]` into `out` (`out.len() == vertex_count()`), without allocating.
+    /// A `t` outside [0, 1] is clamped ([`clamp_time`]): every motion holds its ends.
     ///
     /// # Panics
     /// If `out` has the wrong length or `ws` comes from a different interpolator (programming
@@ -272,6 +286,7 @@ impl Interpolator {
             self.n,
             "output buffer length must equal vertex_count()"
         );
+        let t = clamp_time(t);
         match &self.kind {
             Kind::Disc(d) => d.at(
                 t,

@@ -107,6 +107,22 @@ fn end_frames_reproduce_source_and_target() {
 }
 
 #[test]
+fn times_outside_the_morph_hold_its_ends() {
+    // One rule for every method (`clamp_time`): before 0 the source, after 1 the target,
+    // NaN the source; the disc method would otherwise keep turning past t = 1.
+    let (src, tris) = grid(6, 4, 1.0);
+    let tgt: Vec<Point> = bend(&src, 5.0, 1.1, 0.8);
+    for m in METHODS {
+        let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+        let (start, end) = (it.at_vec(0.0), it.at_vec(1.0));
+        for (t, want) in [(-0.3, &start), (f64::NAN, &start), (1.4, &end), (7.0, &end)] {
+            assert_eq!(&it.at_vec(t), want, "{m:?} at t = {t}");
+        }
+    }
+    assert_eq!(clamp_time(0.25), 0.25);
+}
+
+#[test]
 fn similarity_targets_give_similarity_frames_the_short_way_round() {
     let (src, tris) = grid(14, 14, 1.0); // 196 vertices
     let d = diag(&src);

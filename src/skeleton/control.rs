@@ -238,7 +238,7 @@ impl SkeletonControl {
             self.n,
             "output buffer length must equal vertex_count()"
         );
-        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        let t = crate::rigid::clamp_time(t);
         let (Some(c), Some(cws)) = (&self.control, ws.constrained.as_mut()) else {
             self.plain.at(t, out, &mut ws.plain);
             return;

@@ -185,7 +185,7 @@ impl PoseTrack {
     }
 
     fn params_at(&self, t: f64) -> Vec<f64> {
-        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        let t = crate::rigid::clamp_time(t);
         let k = self
             .times
             .windows(2)
