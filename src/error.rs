@@ -32,6 +32,11 @@ pub struct InputError {
     pub problem: String,
     /// How to fix it, if there is an obvious way.
     pub hint: Option<String>,
+    /// Every control curve the problem concerns, by id, the element first (two features that
+    /// cross, the curves a failed mapping folds near). Not printed: it is for code that
+    /// decides on the problem, as automatic mode does when it gives up a feature, instead of
+    /// searching the message for ids.
+    pub curves: Vec<String>,
 }
 
 /// `s` safe to print on a terminal: control characters (and the other invisible formatting
@@ -94,6 +99,7 @@ impl Error {
             element: None,
             problem: problem.into(),
             hint: None,
+            curves: Vec::new(),
         })
     }
 
@@ -103,9 +109,11 @@ impl Error {
         element: impl Into<String>,
         problem: impl Into<String>,
     ) -> Self {
+        let element: String = element.into();
         Error::Input(InputError {
             file: file.into(),
-            element: Some(element.into()),
+            curves: vec![element.clone()],
+            element: Some(element),
             problem: problem.into(),
             hint: None,
         })
@@ -117,6 +125,29 @@ impl Error {
             e.hint = Some(hint.into());
         }
         self
+    }
+
+    /// Adds control curves (by id) that an input error concerns ([`InputError::curves`]; no
+    /// effect on internal errors).
+    pub fn concerning<S: Into<String>>(mut self, ids: impl IntoIterator<Item = S>) -> Self {
+        if let Error::Input(e) = &mut self {
+            for id in ids {
+                let id = id.into();
+                if !e.curves.contains(&id) {
+                    e.curves.push(id);
+                }
+            }
+        }
+        self
+    }
+
+    /// The control curves an input error concerns ([`InputError::curves`]); none for internal
+    /// errors.
+    pub fn curves(&self) -> &[String] {
+        match self {
+            Error::Input(e) => &e.curves,
+            Error::Internal(_) => &[],
+        }
     }
 
     /// Replaces the file of an input error; stages that do not know the file name use a

@@ -318,17 +318,11 @@ pub(crate) fn build_part(
         if holes.is_empty() {
             break;
         }
-        // Give up the hole the failure names, else the smallest.
-        let text = failure.map(|e| e.to_string()).unwrap_or_default();
-        let named = (0..holes.len()).rev().find(|k| {
-            let id = format!("feature-hole-{k}");
-            text.match_indices(&id).any(|(i, _)| {
-                !text[i + id.len()..]
-                    .chars()
-                    .next()
-                    .is_some_and(|c| c.is_ascii_digit())
-            })
-        });
+        // Give up the hole the failure concerns (the last of them), else the smallest.
+        let curves = failure.as_ref().map_or(&[][..], Error::curves);
+        let named = (0..holes.len())
+            .rev()
+            .find(|k| curves.contains(&format!("feature-hole-{k}")));
         let k = named.unwrap_or_else(|| {
             (0..holes.len())
                 .min_by(|&x, &y| cs[holes[x].0].length.total_cmp(&cs[holes[y].0].length))

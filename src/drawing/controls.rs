@@ -590,7 +590,8 @@ pub(crate) fn validate_layout(
                 &second.id,
                 format!("{what} '{}' near ({:.3}, {:.3})", first.id, p.x, p.y),
             )
-            .with_hint("features must lie inside the boundary and must not touch each other"));
+            .with_hint("features must lie inside the boundary and must not touch each other")
+            .concerning([first.id.clone()]));
         }
     }
     Ok(())

@@ -305,11 +305,12 @@ fn failure(
     why: &str,
 ) -> Error {
     match crossing_names(model, pairs, t, curves) {
-        Some(names) => Error::input(
+        Some((names, ids)) => Error::input(
             "<source> → <target>",
             format!("no flip-free mapping{why}: at t = {t:.3} {names}; {FIG16}"),
         )
-        .with_hint(HINT),
+        .with_hint(HINT)
+        .concerning(ids),
         None => Error::input(
             "<source> → <target>",
             format!("no flip-free mapping{why} (t = {t:.3}); {FIG16}"),
@@ -323,7 +324,7 @@ fn crossing_names(
     pairs: &[CurvePair],
     t: f64,
     curves: &mut Vec<Vec<Point>>,
-) -> Option<String> {
+) -> Option<(String, Vec<String>)> {
     model.curves_at(t.min(1.0), curves);
     let refs: Vec<CurveRef<'_>> = curves
         .iter()
@@ -344,7 +345,15 @@ fn crossing_names(
             }
         })
         .collect();
-    Some(names.join(", "))
+    let mut ids: Vec<String> = Vec::new();
+    for &(a, b) in &crossing {
+        for k in [b, a] {
+            if !ids.contains(&pairs[k].id) {
+                ids.push(pairs[k].id.clone());
+            }
+        }
+    }
+    Some((names.join(", "), ids))
 }
 
 /// The error after step halving failed at `t`: crossing intermediate curves if there are any,
@@ -398,6 +407,7 @@ fn flip_report(
         ),
     )
     .with_hint(HINT)
+    .concerning(names.iter().copied())
 }
 
 #[cfg(test)]

@@ -153,7 +153,7 @@ pub(crate) fn validate_curves(
         } else if a.kind == CurveKind::Boundary {
             Error::at(file, b.id.clone(), "crosses the boundary")
         } else {
-            Error::at(file, b.id.clone(), format!("crosses {}", a.id))
+            Error::at(file, b.id.clone(), format!("crosses {}", a.id)).concerning([a.id.clone()])
         };
         return Err(err);
     }

@@ -44,6 +44,17 @@ fn each_bad_file_is_named_with_its_problem() {
 }
 
 #[test]
+fn crossing_features_are_both_in_the_error_as_data() {
+    // What code decides on (automatic mode gives up a feature the failure concerns): the two
+    // ids as data, the element first, not only in the message.
+    let p = fixtures().join("errors/features-cross.svg");
+    let e = Drawing::open(&p, &ReadOptions::default()).unwrap_err();
+    let mut curves = e.curves().to_vec();
+    curves.sort();
+    assert_eq!(curves, ["feature-a", "feature-b"], "{e}");
+}
+
+#[test]
 fn a_feature_in_one_file_only_is_named() {
     let o = ReadOptions::default();
     let a = Drawing::open(&fixtures().join("errors/square.svg"), &o).unwrap();
