@@ -4,6 +4,7 @@
 //! replace an ignored timing test that asserted nothing. Run:
 //! `cargo bench --bench mapping`.
 
+use crmorph::Side;
 use std::f64::consts::PI;
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -22,7 +23,7 @@ fn mapping(c: &mut Criterion) {
     ] {
         let (lo, hi) = bounding_box(pairs[0].source.iter().copied()).unwrap();
         let tol = Tolerances::new(lo.distance(hi), density);
-        let tri = triangulate(&pairs, &tol, false).unwrap();
+        let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
         let opts = MappingOptions::default();
         let stats = composite_map(&tri, &pairs, &tol, &opts).unwrap().1;
         eprintln!(
@@ -30,7 +31,7 @@ fn mapping(c: &mut Criterion) {
             stats.vertices, stats.triangles, stats.steps, stats.rejected_steps
         );
         g.bench_function(format!("{name}/triangulate"), |b| {
-            b.iter(|| triangulate(&pairs, &tol, false).unwrap())
+            b.iter(|| triangulate(&pairs, &tol, Side::Source).unwrap())
         });
         g.bench_function(format!("{name}/composite_map"), |b| {
             b.iter(|| composite_map(&tri, &pairs, &tol, &opts).unwrap())

@@ -6,6 +6,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use crmorph::rigid::{Interpolator, Method};
 use crmorph::Point;
+use crmorph::Side;
 use std::hint::black_box;
 
 /// `nx × ny` grid, unit spacing, counter-clockwise triangles.
@@ -86,7 +87,11 @@ fn fixture_meshes() -> Vec<(String, crmorph::CompatibleMeshes)> {
         let name = d.file_name().unwrap().to_string_lossy().into_owned();
         for from_target in [false, true] {
             let mut opts = MorphOptions::default();
-            opts.from_target = from_target;
+            opts.triangulated = if from_target {
+                Side::Target
+            } else {
+                Side::Source
+            };
             if let Ok(c) = build(&s, &t, &opts) {
                 let label = if from_target {
                     format!("{name}(from-target)")

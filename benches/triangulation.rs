@@ -4,6 +4,7 @@
 //! Besides criterion's timings it prints, once per fixture, the curve count, the mesh's vertex
 //! count and the number of mapping steps.
 
+use crmorph::Side;
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -39,7 +40,11 @@ fn compatible_triangulation(c: &mut Criterion) {
     for (name, s, t) in fixtures() {
         for from_target in [false, true] {
             let mut opts = MorphOptions::default();
-            opts.from_target = from_target;
+            opts.triangulated = if from_target {
+                Side::Target
+            } else {
+                Side::Source
+            };
             let label = if from_target {
                 format!("{name}(from-target)")
             } else {

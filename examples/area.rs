@@ -2,6 +2,7 @@
 //! and triangle methods, against the linear blend of the end areas.
 //! Run: `cargo run --release --example area`.
 
+use crmorph::Side;
 use std::path::Path;
 
 use crmorph::compatible::{build, MorphOptions};
@@ -17,7 +18,11 @@ fn main() {
     for from_target in [false, true] {
         println!("from_target = {from_target}");
         let mut opts = MorphOptions::default();
-        opts.from_target = from_target;
+        opts.triangulated = if from_target {
+            Side::Target
+        } else {
+            Side::Source
+        };
         let c = build(&s, &t, &opts).unwrap();
         let m = &c.meshes;
         let (a0, a1) = (area(&m.triangles, &m.source), area(&m.triangles, &m.target));

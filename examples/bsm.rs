@@ -2,6 +2,7 @@
 //! into one SVG, for looking at the curves the composite mapping follows.
 //! Run: `cargo run --release --example bsm -- fixtures/u-to-s /tmp/bsm.svg`.
 
+use crmorph::Side;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -16,7 +17,7 @@ fn main() {
     let s = Drawing::open(&dir.join("source.svg"), &o).unwrap();
     let t = Drawing::open(&dir.join("target.svg"), &o).unwrap();
     let (_, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
-    let model = ShapeModel::new(&pairs, false).unwrap();
+    let model = ShapeModel::new(&pairs, Side::Source).unwrap();
     let mut svg = String::from("<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 2400 1000' width='2400' height='1000'><rect width='2400' height='1000' fill='white'/>");
     let mut out = Vec::new();
     for k in 0..=10 {

@@ -6,6 +6,7 @@ use crmorph::compatible::{curve_pairs, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
 use crmorph::geometry::triangle_area;
 use crmorph::triangulation::triangulate;
+use crmorph::Side;
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
@@ -13,7 +14,7 @@ fn main() {
     let s = Drawing::open(a[1].as_ref(), &o).unwrap();
     let t = Drawing::open(a[2].as_ref(), &o).unwrap();
     let (tol, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let curve_count: usize = pairs.iter().map(|p| p.source.len()).sum();
     let target: Vec<_> = pairs
         .iter()

@@ -5,6 +5,7 @@
 //! from the rigid interpolation of its end shapes, see `quality`), to show what repair costs.
 //! Run: `cargo run --release --example folds [FRAMES]` (default 201 frames per morph).
 
+use crmorph::Side;
 use std::path::Path;
 
 use crmorph::compatible::{build, MorphOptions};
@@ -59,7 +60,11 @@ fn main() {
                 };
                 for from_target in [false, true] {
                     let mut opts = MorphOptions::default();
-                    opts.from_target = from_target;
+                    opts.triangulated = if from_target {
+                        Side::Target
+                    } else {
+                        Side::Source
+                    };
                     opts.density = density;
                     total.0 += 1;
                     let c = match build(&s, &t, &opts) {

@@ -2,6 +2,7 @@
 //! their smallest angle in the source and target meshes. Run:
 //! `cargo run --release --example inverted [DENSITY]`.
 
+use crmorph::Side;
 use std::path::Path;
 
 use crmorph::compatible::{build, MorphOptions};
@@ -27,7 +28,11 @@ fn main() {
         let t = Drawing::open(&root.join(name).join("target.svg"), &o).unwrap();
         for from_target in [false, true] {
             let mut opts = MorphOptions::default();
-            opts.from_target = from_target;
+            opts.triangulated = if from_target {
+                Side::Target
+            } else {
+                Side::Source
+            };
             opts.density = std::env::args()
                 .nth(1)
                 .and_then(|d| d.parse().ok())

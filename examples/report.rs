@@ -2,6 +2,7 @@
 //! number of mapping steps and the time it took, or the error. Run:
 //! `cargo run --release --example report`.
 
+use crmorph::Side;
 use std::path::Path;
 use std::time::Instant;
 
@@ -31,7 +32,11 @@ fn main() {
         );
         for from_target in [false, true] {
             let mut opts = MorphOptions::default();
-            opts.from_target = from_target;
+            opts.triangulated = if from_target {
+                Side::Target
+            } else {
+                Side::Source
+            };
             let start = Instant::now();
             let r = build(&s, &t, &opts);
             let ms = start.elapsed().as_secs_f64() * 1e3;

@@ -57,11 +57,15 @@ fn main() {
         for s in &report.shapes {
             let rung = match s.rung {
                 crmorph::auto::part::Rung::Mapped {
-                    from_target,
+                    triangulated,
                     features,
                 } => format!(
                     "composite harmonic mapping{}{}",
-                    if from_target { " from the target" } else { "" },
+                    if triangulated == crmorph::Side::Target {
+                        " from the target"
+                    } else {
+                        ""
+                    },
                     if features > 0 { ", holes aligned" } else { "" }
                 ),
                 other => other.to_string(),

@@ -1,6 +1,7 @@
 //! Prints the worst triangles of each fixture's source triangulation (smallest angle, shortest
 //! edge), for checking the triangulation stage. Run: `cargo run --release --example triquality`.
 
+use crmorph::Side;
 use std::path::Path;
 
 use crmorph::compatible::{curve_pairs, MorphOptions};
@@ -16,7 +17,7 @@ fn main() {
         let t = Drawing::open(&d.join("target.svg"), &o).unwrap();
         let (tol, pairs) = curve_pairs(&s, &t, &MorphOptions::default()).unwrap();
         let curve_vertices: usize = pairs.iter().map(|p| p.source.len()).sum();
-        let tri = triangulate(&pairs, &tol, false).unwrap();
+        let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
         let mut worst: Vec<(f64, f64, [u32; 3])> = tri
             .triangles
             .iter()

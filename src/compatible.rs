@@ -1,7 +1,7 @@
 //! Compatible triangulation of a source and a target drawing: stages 2–4 of the pipeline.
 //!
 //! [`build`] runs the vertex correspondence (§3), the constrained Delaunay triangulation of the
-//! source (or of the target with [`MorphOptions::from_target`], Fig.12) and the composite harmonic
+//! source (or of the target with [`MorphOptions::triangulated`], Fig. 12) and the composite harmonic
 //! mapping through the barycenter-based shape model (§5), and returns meshes that share
 //! connectivity, with every curve vertex on its twin.
 
@@ -9,7 +9,7 @@ use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::mapping::{composite_map, MappingOptions, MappingStats};
-use crate::mesh::CompatibleMeshes;
+use crate::mesh::{CompatibleMeshes, Side};
 use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
 use crate::tolerance::Tolerances;
 use crate::triangulation::triangulate;
@@ -18,8 +18,9 @@ use crate::triangulation::triangulate;
 #[derive(Debug, Clone, Default)]
 #[non_exhaustive]
 pub struct MorphOptions {
-    /// Triangulate the target and map it to the source instead (Fig.12). Default: false.
-    pub from_target: bool,
+    /// The side that is triangulated and mapped onto the other (Fig. 12 triangulates the
+    /// target). Default: the source.
+    pub triangulated: Side,
     /// Vertex density multiplier for correspondence and refinement. Default: 1.0 (0 means 1.0).
     pub density: f64,
     /// Vertex correspondence options. Default: [`CorrespondenceOptions::default`].
@@ -133,20 +134,18 @@ fn folded_frames(c: &Compatible, enough: usize) -> usize {
     folded
 }
 
-/// Relaxes the mesh the harmonic map produced (the target's, or the source's with
-/// `from_target`) towards the triangle shapes of the triangulated one, curve vertices held
-/// (`mapping::relax_towards`): fewer slivers, so fewer triangles for the interpolation to fold.
-fn relax_mapped(m: &mut CompatibleMeshes, from_target: bool) {
+/// Relaxes the mesh the harmonic map produced (the side not `triangulated`) towards the
+/// triangle shapes of the triangulated one, curve vertices held (`mapping::relax_towards`): fewer slivers, so fewer triangles for the interpolation to fold.
+fn relax_mapped(m: &mut CompatibleMeshes, triangulated: Side) {
     let mut held = vec![false; m.source.len()];
     for &v in m.curves.iter().flat_map(|c| &c.vertices) {
         if let Some(h) = held.get_mut(v as usize) {
             *h = true;
         }
     }
-    let (rest, mapped) = if from_target {
-        (&m.target, &mut m.source)
-    } else {
-        (&m.source, &mut m.target)
+    let (rest, mapped) = match triangulated {
+        Side::Target => (&m.target, &mut m.source),
+        Side::Source => (&m.source, &mut m.target),
     };
     crate::mapping::relax_towards(rest, mapped, &m.triangles, &held);
 }
@@ -157,16 +156,12 @@ pub fn common_tolerances(source: &Drawing, target: &Drawing, density: f64) -> To
     Tolerances::new(d, if density > 0.0 { density } else { 1.0 })
 }
 
-/// Replaces the `<source>` / `<target>` placeholders that stages without file names use.
-fn name_files(e: Error, source: &Drawing, target: &Drawing, from_target: bool) -> Error {
+/// Replaces the `<source>` / `<target>` placeholders ([`Side::placeholder`]) that stages
+/// without file names use. Each names its own side, whichever is triangulated.
+fn name_files(e: Error, source: &Drawing, target: &Drawing) -> Error {
     match e {
         Error::Input(mut ie) => {
-            // The triangulated side is what the stages call the source.
-            let (s, t) = if from_target {
-                (&target.file, &source.file)
-            } else {
-                (&source.file, &target.file)
-            };
+            let (s, t) = (&source.file, &target.file);
             ie.file = ie.file.replace("<source>", s).replace("<target>", t);
             Error::Input(ie)
         }
@@ -214,8 +209,8 @@ fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) 
 pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
     check_vertex_budget(source, target, opts)?;
     let (tol, pairs) = curve_pairs(source, target, opts)?;
-    let fix = |e| name_files(e, source, target, opts.from_target);
-    let tri = triangulate(&pairs, &tol, opts.from_target).map_err(fix)?;
+    let fix = |e| name_files(e, source, target);
+    let tri = triangulate(&pairs, &tol, opts.triangulated).map_err(fix)?;
     let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;
     let plain = Compatible {
         meshes,
@@ -231,10 +226,31 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
         return Ok(plain);
     }
     let mut relaxed = plain.clone();
-    relax_mapped(&mut relaxed.meshes, opts.from_target);
+    relax_mapped(&mut relaxed.meshes, opts.triangulated);
     Ok(if folded_frames(&relaxed, folds) < folds {
         relaxed
     } else {
         plain
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drawing::ReadOptions;
+
+    #[test]
+    fn each_placeholder_names_its_own_file_whichever_side_is_triangulated() {
+        // Stages name the side they checked (`Side::placeholder`): "<target>" is the target
+        // even when the target is the side triangulated (before, it was swapped then).
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="10" height="10"/></svg>"#;
+        let read = |name: &str| Drawing::from_str(name, svg, &ReadOptions::default()).unwrap();
+        let (s, t) = (read("a.svg"), read("b.svg"));
+        for (placeholder, file) in [(Side::Source, "a.svg"), (Side::Target, "b.svg")] {
+            let e = name_files(Error::input(placeholder.placeholder(), "x"), &s, &t);
+            assert_eq!(e.to_string(), format!("{file}: x"));
+        }
+        let e = name_files(Error::input("<source> → <target>", "x"), &s, &t);
+        assert_eq!(e.to_string(), "a.svg → b.svg: x");
+    }
 }

@@ -54,5 +54,5 @@ pub mod triangulation;
 
 pub use error::{Error, InputError, Result};
 pub use geometry::Point;
-pub use mesh::{CompatibleMeshes, CurveKind, MeshCurve};
+pub use mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
 pub use morpher::Morpher;

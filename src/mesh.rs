@@ -8,6 +8,37 @@
 use crate::geometry::{orient2d, Point};
 use serde::{Deserialize, Serialize};
 
+/// Which of a morph's two drawings (and meshes): the source, shown at t = 0, or the target, at
+/// t = 1. The compatible triangulation triangulates one side and maps it onto the other (the
+/// paper triangulates the source; Fig. 12 the target).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Side {
+    /// The source drawing (default).
+    #[default]
+    Source,
+    /// The target drawing.
+    Target,
+}
+
+impl Side {
+    /// The other side.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Source => Side::Target,
+            Side::Target => Side::Source,
+        }
+    }
+
+    /// The placeholder file name of this side in messages of stages that do not know the
+    /// files (`<source>`, `<target>`; see [`crate::Error::in_file`]).
+    pub fn placeholder(self) -> &'static str {
+        match self {
+            Side::Source => "<source>",
+            Side::Target => "<target>",
+        }
+    }
+}
+
 /// What kind of control curve a mesh curve comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

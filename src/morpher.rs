@@ -38,16 +38,7 @@ use crate::render::{FrameOptions, Padding};
 use crate::rigid::{Interpolator, Method};
 use crate::skeleton::{Pose, Skeleton, SkeletonControl};
 
-/// Which drawing is triangulated and mapped onto the other (the paper's Fig. 12 triangulates
-/// the target).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Side {
-    /// Triangulate the source, map it onto the target (default).
-    #[default]
-    Source,
-    /// Triangulate the target, map it onto the source.
-    Target,
-}
+pub use crate::mesh::Side;
 
 /// What every frame shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -259,7 +250,7 @@ impl Morpher {
             }
         }
         let opts = MorphOptions {
-            from_target: self.triangulated == Side::Target,
+            triangulated: self.triangulated,
             density: self.density,
             ..MorphOptions::default()
         };

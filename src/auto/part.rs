@@ -23,7 +23,7 @@ use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
-use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve};
+use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
 use crate::tolerance::Tolerances;
 
 use super::contours::Contour;
@@ -31,11 +31,11 @@ use super::contours::Contour;
 /// Which rung of the ladder (module docs) gave a shape pair its compatible meshes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Rung {
-    /// The paper's compatible triangulation (§5) with `features` holes aligned, triangulating
-    /// the target and mapping it onto the source when `from_target` (Fig. 12).
+    /// The paper's compatible triangulation (§5) with `features` holes aligned, side
+    /// `triangulated` triangulated and mapped onto the other (Fig. 12: the target).
     Mapped {
-        /// The target side was triangulated.
-        from_target: bool,
+        /// The side that was triangulated.
+        triangulated: Side,
         /// Matched holes aligned as feature curves.
         features: usize,
     },
@@ -52,11 +52,11 @@ impl std::fmt::Display for Rung {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Rung::Mapped {
-                from_target,
+                triangulated,
                 features,
             } => {
                 f.write_str("composite harmonic mapping")?;
-                if *from_target {
+                if *triangulated == Side::Target {
                     f.write_str(" from the target")?;
                 }
                 match features {
@@ -281,9 +281,9 @@ pub(crate) fn build_part(
         s.controls.anchors.retain(|x| keep.contains(&x.name));
         t.controls.anchors.retain(|x| keep.contains(&x.name));
         let mut failure: Option<Error> = None;
-        for from_target in [false, true] {
+        for triangulated in [Side::Source, Side::Target] {
             let mut o = inputs.opts.clone();
-            o.from_target = from_target;
+            o.triangulated = triangulated;
             match build(&s, &t, &o).and_then(|c| moves_without_folding(&c).map(|r| (c, r))) {
                 Ok((c, repair)) => {
                     let features = holes
@@ -300,7 +300,7 @@ pub(crate) fn build_part(
                         .collect::<Vec<_>>();
                     return Ok(PartMesh {
                         rung: Rung::Mapped {
-                            from_target,
+                            triangulated,
                             features: features.len(),
                         },
                         features,

@@ -23,7 +23,7 @@ use super::shape_model::ShapeModel;
 use super::untangle::Untangler;
 use crate::correspondence::CurvePair;
 use crate::geometry::Point;
-use crate::mesh::{count_inverted, CompatibleMeshes};
+use crate::mesh::{count_inverted, CompatibleMeshes, Side};
 use crate::tolerance::Tolerances;
 use crate::triangulation::validate::{crossing_curves, CurveRef};
 use crate::triangulation::{validate_curves, Triangulation};
@@ -116,8 +116,8 @@ pub fn composite_map(
     tol: &Tolerances,
     opts: &MappingOptions,
 ) -> Result<(CompatibleMeshes, MappingStats)> {
-    let from_target = tri.from_target;
-    validate_curves(pairs, tol, !from_target)?;
+    let triangulated = tri.triangulated;
+    validate_curves(pairs, tol, triangulated.other())?;
     if tri.curves.len() != pairs.len()
         || tri
             .curves
@@ -143,7 +143,7 @@ pub fn composite_map(
         triangles: tri.triangles.len(),
         ..Default::default()
     };
-    let model = ShapeModel::new(pairs, from_target)?;
+    let model = ShapeModel::new(pairs, triangulated)?;
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
     let untangler = Untangler::new(&tri.triangles, &fixed);
     let mut solver = Solver {
@@ -153,7 +153,7 @@ pub fn composite_map(
     let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
         Err(e) if e.is_input() && pairs.len() > 1 => {
             log::debug!("composite map: BSM path failed ({e}), trying carried features");
-            let carried = ShapeModel::carried(pairs, from_target)?;
+            let carried = ShapeModel::carried(pairs, triangulated)?;
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
             let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
@@ -166,7 +166,7 @@ pub fn composite_map(
         Ok(c) => c,
         Err(e) if e.is_input() && opts.linear_fallback => {
             log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
-            let linear = ShapeModel::linear(pairs, from_target)?;
+            let linear = ShapeModel::linear(pairs, triangulated)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
             let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
@@ -184,10 +184,9 @@ pub fn composite_map(
         current = before;
     }
     // The last step put the curve vertices exactly on the far side's curves.
-    let (source, target) = if from_target {
-        (current, tri.points.clone())
-    } else {
-        (tri.points.clone(), current)
+    let (source, target) = match triangulated {
+        Side::Target => (current, tri.points.clone()),
+        Side::Source => (tri.points.clone(), current),
     };
     debug_assert!(tri.curves.iter().zip(pairs).all(|(c, p)| c
         .vertices

@@ -291,8 +291,12 @@ mod tests {
             pair("boundary", true, sq),
             pair("feature-o", true, circle(p(6., 5.), 2., 24)),
         ];
-        let tri =
-            triangulate(&pairs, &crate::tolerance::Tolerances::new(14.0, 1.0), false).unwrap();
+        let tri = triangulate(
+            &pairs,
+            &crate::tolerance::Tolerances::new(14.0, 1.0),
+            crate::mesh::Side::Source,
+        )
+        .unwrap();
         let n = tri.points.len();
         let mut fixed = vec![false; n];
         for c in &tri.curves {

@@ -28,7 +28,7 @@
 use crate::artwork::PointLocator;
 use crate::correspondence::CurvePair;
 use crate::geometry::{orient2d, polygon_area, Point};
-use crate::mesh::{count_inverted, CompatibleMeshes, CurveKind, MeshCurve};
+use crate::mesh::{count_inverted, CompatibleMeshes, CurveKind, MeshCurve, Side};
 use crate::tolerance::Tolerances;
 use crate::triangulation::{triangulate, Triangulation};
 use crate::{Error, Result};
@@ -68,8 +68,8 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
         flatten: tol.flatten,
         ..coarse
     };
-    let a = triangulate(&pairs, &coarse, false)?;
-    let b = triangulate(&pairs, &coarse, true)?;
+    let a = triangulate(&pairs, &coarse, Side::Source)?;
+    let b = triangulate(&pairs, &coarse, Side::Target)?;
     let circle = disc_points(p, q);
     let da = embed(&a, &circle)?;
     let db = embed(&b, &circle)?;

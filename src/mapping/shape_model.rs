@@ -14,6 +14,7 @@
 use super::carried::Carried;
 use crate::correspondence::CurvePair;
 use crate::geometry::{bounding_box, centroid, Point};
+use crate::mesh::Side;
 use crate::rigid::Interpolator;
 use crate::triangulation::side_of;
 use crate::{Error, Result};
@@ -173,16 +174,16 @@ impl CurveModel {
 
 impl ShapeModel {
     /// Builds the model from the source side to the target side of `pairs` (target to source
-    /// when `from_target`). Errors on curves with zero-length edges.
-    pub fn new(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
+    /// when `triangulated` is the target). Errors on curves with zero-length edges.
+    pub fn new(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
         let mut curves = pairs
             .iter()
             .map(|p| {
                 CurveModel::new(
                     &p.id,
                     p.closed,
-                    side_of(p, from_target),
-                    side_of(p, !from_target),
+                    side_of(p, triangulated),
+                    side_of(p, triangulated.other()),
                 )
             })
             .collect::<Result<Vec<_>>>()?;
@@ -227,8 +228,8 @@ impl ShapeModel {
     /// linearly. It distorts rotating curves, but keeps curves that translate or shear together
     /// in place relative to each other, so the composite mapping falls back to it when the BSM
     /// path folds the mesh.
-    pub fn linear(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
-        let mut m = ShapeModel::new(pairs, from_target)?;
+    pub fn linear(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
+        let mut m = ShapeModel::new(pairs, triangulated)?;
         m.interpolator = None;
         m.linear = true;
         Ok(m)
@@ -239,8 +240,8 @@ impl ShapeModel {
     /// of its curve moving as one body placed by the barycenter mesh. A feature in an arm that
     /// swings (a U becoming an S) swings with it. The composite mapping tries it when the BSM
     /// path folds the mesh. Falls back to the plain BSM when the boundary has a zero-length edge.
-    pub fn carried(pairs: &[CurvePair], from_target: bool) -> Result<Self> {
-        let mut m = ShapeModel::new(pairs, from_target)?;
+    pub fn carried(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
+        let mut m = ShapeModel::new(pairs, triangulated)?;
         if let Some((b, fs)) = m.curves.split_first() {
             let features: Vec<(&[Point], &[Point])> = fs
                 .iter()
@@ -389,14 +390,14 @@ mod tests {
     #[test]
     fn reproduces_both_ends() {
         let pairs = scene();
-        let m = ShapeModel::new(&pairs, false).unwrap();
+        let m = ShapeModel::new(&pairs, Side::Source).unwrap();
         let mut out = Vec::new();
         m.curves_at(0.0, &mut out);
         assert!(pairs.iter().zip(&out).all(|(pc, o)| pc.source == *o));
         m.curves_at(1.0, &mut out);
         assert!(pairs.iter().zip(&out).all(|(pc, o)| pc.target == *o));
         // continuity at the ends
-        for (t, side) in [(1e-9, false), (1.0 - 1e-9, true)] {
+        for (t, side) in [(1e-9, Side::Source), (1.0 - 1e-9, Side::Target)] {
             m.curves_at(t, &mut out);
             for (pc, o) in pairs.iter().zip(&out) {
                 let end = side_of(pc, side);
@@ -409,7 +410,7 @@ mod tests {
             }
         }
         // from the target side, the model runs backwards
-        let back = ShapeModel::new(&pairs, true).unwrap();
+        let back = ShapeModel::new(&pairs, Side::Target).unwrap();
         back.curves_at(0.0, &mut out);
         assert!(pairs.iter().zip(&out).all(|(pc, o)| pc.target == *o));
     }
@@ -420,7 +421,7 @@ mod tests {
             let mut pairs = scene();
             let angle = deg.to_radians();
             similar(&mut pairs, angle, 1.7, p(5., -3.));
-            let m = ShapeModel::new(&pairs, false).unwrap();
+            let m = ShapeModel::new(&pairs, Side::Source).unwrap();
             let mut out = Vec::new();
             for t in [0.25, 0.5, 0.8] {
                 m.curves_at(t, &mut out);
@@ -455,7 +456,7 @@ mod tests {
     fn a_half_turn_turns_every_curve_the_same_way() {
         let mut pairs = scene();
         similar(&mut pairs, PI, 1.0, p(0., 0.));
-        let m = ShapeModel::new(&pairs, false).unwrap();
+        let m = ShapeModel::new(&pairs, Side::Source).unwrap();
         let mut out = Vec::new();
         m.curves_at(0.5, &mut out);
         let turns: Vec<f64> = pairs
@@ -477,7 +478,7 @@ mod tests {
     #[test]
     fn closed_curves_stay_closed_and_keep_their_length_budget() {
         let pairs = scene();
-        let m = ShapeModel::new(&pairs, false).unwrap();
+        let m = ShapeModel::new(&pairs, Side::Source).unwrap();
         let mut out = Vec::new();
         m.curves_at(0.5, &mut out);
         let eye = &out[1];

@@ -12,7 +12,7 @@ pub(crate) mod validate;
 
 use crate::correspondence::CurvePair;
 use crate::geometry::{point_in_polygon, polygon_area, Point};
-use crate::mesh::{CurveKind, MeshCurve};
+use crate::mesh::{CurveKind, MeshCurve, Side};
 use crate::tolerance::Tolerances;
 use crate::{Error, Result};
 
@@ -29,15 +29,15 @@ pub struct Triangulation {
     pub triangles: Vec<[u32; 3]>,
     /// The boundary and feature curves as vertex chains, in the order of the curve pairs.
     pub curves: Vec<MeshCurve>,
-    /// Whether the target side was triangulated (`--from target`, §6.1 / Fig.12).
-    pub from_target: bool,
+    /// The side that was triangulated (`--from target`, §6.1 / Fig.12).
+    pub triangulated: Side,
 }
 
 /// Minimum angle that Delaunay refinement aims for, in degrees (Triangle's `-q` quality switch
 /// in the paper's pipeline; spade refines to this where constraint angles allow).
 pub const MIN_ANGLE_DEG: f64 = 25.0;
 
-/// Triangulates the source side of `pairs` (the target side when `from_target`): validates the
+/// Triangulates side `triangulated` of `pairs` (the paper: the source): validates the
 /// curves, builds the constrained Delaunay triangulation with every curve edge as a constraint,
 /// refines it to [`MIN_ANGLE_DEG`] and [`Tolerances::max_area`] without splitting constraints,
 /// and keeps the faces inside the boundary.
@@ -48,15 +48,15 @@ pub const MIN_ANGLE_DEG: f64 = 25.0;
 pub fn triangulate(
     pairs: &[CurvePair],
     tol: &Tolerances,
-    from_target: bool,
+    triangulated: Side,
 ) -> Result<Triangulation> {
-    let file = if from_target { "<target>" } else { "<source>" };
-    let side = |p| side_of(p, from_target);
-    validate_curves(pairs, tol, from_target)?;
+    let file = triangulated.placeholder();
+    let side = |p| side_of(p, triangulated);
+    validate_curves(pairs, tol, triangulated)?;
     let curves: Vec<(&[Point], bool)> = pairs.iter().map(|p| (side(p), p.closed)).collect();
     let twins: Vec<Point> = pairs
         .iter()
-        .flat_map(|p| side_of(p, !from_target).iter().copied())
+        .flat_map(|p| side_of(p, triangulated.other()).iter().copied())
         .collect();
     let (points, triangles) = cdt::build(&curves, &twins, tol).map_err(|e| match e {
         cdt::CdtError::Crossing(c) => Error::at(
@@ -88,19 +88,15 @@ pub fn triangulate(
         points,
         triangles,
         curves: mesh_curves,
-        from_target,
+        triangulated,
     })
 }
 
 /// Checks the curves of one side: one closed, simple, counter-clockwise boundary first; features
 /// inside it; no crossings, touchings or coincident vertices.
-pub(crate) fn validate_curves(
-    pairs: &[CurvePair],
-    tol: &Tolerances,
-    from_target: bool,
-) -> Result<()> {
-    let file = if from_target { "<target>" } else { "<source>" };
-    let side = |p| side_of(p, from_target);
+pub(crate) fn validate_curves(pairs: &[CurvePair], tol: &Tolerances, checked: Side) -> Result<()> {
+    let file = checked.placeholder();
+    let side = |p| side_of(p, checked);
     let Some(boundary) = pairs.first().filter(|p| p.kind == CurveKind::Boundary) else {
         return Err(Error::input(file, "no boundary curve"));
     };
@@ -167,11 +163,10 @@ pub(crate) fn validate_curves(
 }
 
 /// The vertices of one side of a curve pair.
-pub(crate) fn side_of(p: &CurvePair, from_target: bool) -> &[Point] {
-    if from_target {
-        &p.target
-    } else {
-        &p.source
+pub(crate) fn side_of(p: &CurvePair, side: Side) -> &[Point] {
+    match side {
+        Side::Source => &p.source,
+        Side::Target => &p.target,
     }
 }
 

@@ -1,6 +1,7 @@
 use super::*;
 use crate::geometry::{point_segment_distance, triangle_area};
 pub(crate) use crate::mapping::samples::{circle, pair, resampled};
+use crate::mesh::Side;
 use crate::mesh::{count_inverted, edges};
 
 fn p(x: f64, y: f64) -> Point {
@@ -42,7 +43,7 @@ fn min_angle_deg(a: Point, b: Point, c: Point) -> f64 {
 fn square_with_open_and_closed_features() {
     let pairs = square_with_features();
     let tol = Tolerances::new(200f64.sqrt(), 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let n_curve: usize = pairs.iter().map(|p| p.source.len()).sum();
     assert!(
         tri.points.len() > n_curve + 20,
@@ -112,7 +113,7 @@ fn square_with_open_and_closed_features() {
         }
     }
     // deterministic
-    assert_eq!(triangulate(&pairs, &tol, false).unwrap(), tri);
+    assert_eq!(triangulate(&pairs, &tol, Side::Source).unwrap(), tri);
 }
 
 #[test]
@@ -121,7 +122,9 @@ fn crossing_and_outside_features_are_named() {
     let mut pairs = square_with_features();
     pairs[2].source = vec![p(5., 5.), p(12., 5.)];
     pairs[2].target = pairs[2].source.clone();
-    let e = triangulate(&pairs, &tol, false).unwrap_err().to_string();
+    let e = triangulate(&pairs, &tol, Side::Source)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("feature-line") && e.contains("crosses the boundary"),
         "{e}"
@@ -130,7 +133,9 @@ fn crossing_and_outside_features_are_named() {
     let mut pairs = square_with_features();
     pairs[2].source = vec![p(7., 3.), p(7., 9.)];
     pairs[2].target = pairs[2].source.clone();
-    let e = triangulate(&pairs, &tol, false).unwrap_err().to_string();
+    let e = triangulate(&pairs, &tol, Side::Source)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("feature-line") && e.contains("crosses feature-eye"),
         "{e}"
@@ -138,21 +143,25 @@ fn crossing_and_outside_features_are_named() {
 
     let mut pairs = square_with_features();
     pairs[1].target = circle(p(20., 20.), 1.0, 32);
-    let e = triangulate(&pairs, &tol, true).unwrap_err().to_string();
+    let e = triangulate(&pairs, &tol, Side::Target)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("<target>") && e.contains("feature-eye") && e.contains("outside"),
         "{e}"
     );
-    assert!(triangulate(&pairs, &tol, false).is_ok());
+    assert!(triangulate(&pairs, &tol, Side::Source).is_ok());
 
     let mut pairs = square_with_features();
     pairs[2].source[1] = pairs[1].source[3];
-    let e = triangulate(&pairs, &tol, false).unwrap_err().to_string();
+    let e = triangulate(&pairs, &tol, Side::Source)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("coincides"), "{e}");
 
     let mut pairs = square_with_features();
     pairs[0].source.reverse();
-    assert!(triangulate(&pairs, &tol, false).is_err());
+    assert!(triangulate(&pairs, &tol, Side::Source).is_err());
 }
 
 /// A star-shaped polygon around the origin with radii `radii` (counter-clockwise), edges split
@@ -180,7 +189,7 @@ proptest::proptest! {
             pairs.push(pair("feature-c", true, circle(p(0.05, -0.02), 0.2, 12)));
         }
         let tol = Tolerances::new(2.0, 1.0);
-        let tri = triangulate(&pairs, &tol, false).unwrap();
+        let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
         proptest::prop_assert_eq!(count_inverted(&tri.triangles, &tri.points), 0);
         let area: f64 = tri
             .triangles
@@ -218,7 +227,7 @@ fn regression_collinear_hull_vertices() {
     let radii = [0.6, 0.721148464254704, 0.7455831531867653, 0.6, 0.6];
     let pairs = vec![pair("boundary", true, star(&radii, 0.08))];
     let tol = Tolerances::new(2.0, 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     assert_eq!(count_inverted(&tri.triangles, &tri.points), 0);
 }
 
@@ -237,7 +246,7 @@ fn no_triangle_has_every_corner_on_a_curve() {
         .collect();
     let pairs = vec![pair("boundary", true, subdivided(&star, 6))];
     let tol = Tolerances::new(180.0, 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let on_curve = pairs[0].source.len() as u32;
     let all_fixed = tri
         .triangles

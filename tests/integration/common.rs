@@ -1,5 +1,6 @@
 //! Fixture discovery and shared helpers.
 
+use crmorph::Side;
 use std::path::{Path, PathBuf};
 
 use crmorph::compatible::{build, Compatible, MorphOptions};
@@ -45,7 +46,11 @@ pub(crate) fn open(p: &Path) -> Drawing {
 /// Builds the compatible triangulation of a pair.
 pub(crate) fn compatible(s: &Drawing, t: &Drawing, from_target: bool) -> Compatible {
     let mut o = MorphOptions::default();
-    o.from_target = from_target;
+    o.triangulated = if from_target {
+        Side::Target
+    } else {
+        Side::Source
+    };
     build(s, t, &o).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -6,6 +6,7 @@ use crmorph::compatible::{build, Compatible, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
 use crmorph::mesh::count_inverted;
 use crmorph::rigid::Method;
+use crmorph::Side;
 use proptest::prelude::*;
 
 use crate::common::pairs;
@@ -19,7 +20,11 @@ fn build_at(src: &str, tgt: &str, density: f64, from_target: bool) -> crmorph::R
     let t = Drawing::from_str("target.svg", tgt, &o)?;
     let mut opts = MorphOptions::default();
     opts.density = density;
-    opts.from_target = from_target;
+    opts.triangulated = if from_target {
+        Side::Target
+    } else {
+        Side::Source
+    };
     build(&s, &t, &opts)
 }
 

@@ -2,6 +2,7 @@ use super::*;
 use crate::geometry::bounding_box;
 use crate::mapping::samples::{bent_band, circle, pair, turning_bar};
 use crate::mesh::sanity_check;
+use crate::mesh::Side;
 use crate::triangulation::tests::subdivided;
 use crate::triangulation::triangulate;
 use std::f64::consts::PI;
@@ -17,7 +18,12 @@ fn diagonal(pairs: &[CurvePair]) -> f64 {
 
 fn map(pairs: &[CurvePair], from_target: bool) -> Result<(CompatibleMeshes, MappingStats)> {
     let tol = Tolerances::new(diagonal(pairs), 1.0);
-    let tri = triangulate(pairs, &tol, from_target)?;
+    let side = if from_target {
+        Side::Target
+    } else {
+        Side::Source
+    };
+    let tri = triangulate(pairs, &tol, side)?;
     composite_map(&tri, pairs, &tol, &MappingOptions::default())
 }
 
@@ -98,7 +104,7 @@ fn composing_avoids_the_folds_of_one_direct_map() {
     // the composite one does not.
     let pairs = turning_bar(45.0);
     let tol = Tolerances::new(diagonal(&pairs), 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let n = tri.points.len();
     let mut fixed = vec![false; n];
     let mut direct = tri.points.clone();
@@ -124,7 +130,7 @@ fn a_folding_step_is_untangled_instead_of_abandoned() {
     // untangling of its folded triangles makes it valid.
     let pairs = turning_bar(45.0);
     let tol = Tolerances::new(diagonal(&pairs), 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let one = MappingOptions::default()
         .with_initial_steps(1)
         .with_min_step(0.75)
@@ -141,7 +147,7 @@ fn a_curled_strip_carries_its_features_with_the_boundary() {
     // the feature stays in its place in the strip.
     let pairs = bent_strip(20.0, 2, 1.5 * PI);
     let tol = Tolerances::new(diagonal(&pairs), 1.0);
-    let tri = triangulate(&pairs, &tol, false).unwrap();
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
     let strict = MappingOptions::default().with_linear_fallback(false);
     let (m, stats) = composite_map(&tri, &pairs, &tol, &strict).unwrap();
     assert_healthy(&m, &pairs);
@@ -151,9 +157,9 @@ fn a_curled_strip_carries_its_features_with_the_boundary() {
 #[test]
 fn carried_features_end_exactly_on_their_twins_and_stay_inside() {
     let pairs = bent_strip(20.0, 2, 1.5 * PI);
-    let model = ShapeModel::carried(&pairs, false).unwrap();
+    let model = ShapeModel::carried(&pairs, Side::Source).unwrap();
     let mut curves = Vec::new();
-    for (t, side) in [(0.0, false), (1.0, true)] {
+    for (t, side) in [(0.0, Side::Source), (1.0, Side::Target)] {
         model.curves_at(t, &mut curves);
         for (c, p) in curves.iter().zip(&pairs) {
             assert_eq!(c.as_slice(), crate::triangulation::side_of(p, side));
