@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
 use super::gif::{changed_rect, check_frames, playback_schedule};
-use super::stream::{chunk_len, in_order};
+use crate::render::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::render::straight_rgba;
 use crate::{Error, Result};

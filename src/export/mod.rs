@@ -7,12 +7,12 @@ pub mod apng;
 pub mod gif;
 pub mod html;
 pub mod morph;
-mod stream;
-pub(crate) use stream::chunk_len;
-pub mod timeline;
 
 pub use apng::encode_apng;
 pub use gif::{encode_gif, gif_fidelity, Fidelity};
 pub use html::{preview_html, PreviewMesh};
 pub use morph::{Export, Morph, Motion};
-pub use timeline::{Easing, Playback, Timeline};
+// The timeline is part of what a frame is (its time), so it lives below the exporters, in
+// `render`; it is re-exported here, where exporters' users look for it.
+pub use crate::render::timeline;
+pub use crate::render::timeline::{Easing, Playback, Timeline};

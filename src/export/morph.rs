@@ -10,7 +10,7 @@ use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::apng::write_apng;
 use crate::export::gif::write_gif;
-use crate::export::stream::{chunk_len, in_order};
+use crate::render::stream::{chunk_len, in_order};
 use crate::export::{preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;

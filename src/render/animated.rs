@@ -29,7 +29,7 @@ use super::tree::{fixed, path_data, sig, Node, NumFormat, Value};
 use super::FrameOptions;
 use crate::artwork::Scene;
 use crate::error::{Error, Result};
-use crate::export::{Playback, Timeline};
+use super::timeline::{Playback, Timeline};
 use kurbo::{Affine, BezPath, PathEl};
 use rayon::prelude::*;
 
@@ -101,7 +101,7 @@ pub(crate) fn write_animated_svg<W: std::io::Write>(
     let frames: Vec<usize> = (0..timeline.frames).collect();
     let mut first: Option<Node> = None;
     let mut packed: Vec<Vec<Slot>> = Vec::with_capacity(frames.len());
-    for chunk in frames.chunks(crate::export::chunk_len(0)) {
+    for chunk in frames.chunks(super::stream::chunk_len(0)) {
         let made = trees(chunk)?;
         if made.len() != chunk.len() {
             return Err(Error::internal(format!(

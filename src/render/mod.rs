@@ -12,8 +12,10 @@ pub mod animated;
 mod fit;
 mod font;
 mod raster;
+pub(crate) mod stream;
 pub mod svg_frame;
 mod texture;
+pub mod timeline;
 mod tree;
 pub mod view;
 
@@ -25,6 +27,7 @@ pub use raster::{
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
 pub(crate) use svg_frame::{frame_tree, Mode};
 pub(crate) use tree::{fixed, Node};
+pub use timeline::{Easing, Playback, Timeline};
 pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};

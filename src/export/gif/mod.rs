@@ -52,7 +52,7 @@ use std::io::Write;
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
-use super::stream::{chunk_len, in_order};
+use crate::render::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::artwork::Rgba;
 use crate::{Error, Result};
