@@ -462,7 +462,7 @@ fn morpher(inputs: &Inputs, progress: &Progress) -> Result<Morpher> {
 }
 
 /// The front door's progress reports on the CLI's progress display.
-fn report(progress: &Progress) -> impl FnMut(crmorph::morpher::Progress) + '_ {
+pub(crate) fn report(progress: &Progress) -> impl FnMut(crmorph::morpher::Progress) + '_ {
     |p| match p {
         crmorph::morpher::Progress::Stage(s) => progress.stage(s),
         crmorph::morpher::Progress::Note(n) => progress.note(n),

@@ -39,10 +39,7 @@ pub(crate) fn run(dir: &Path, progress: &Progress) -> Result<String> {
     let m = Morpher::from_svg(("gourd/source.svg", SOURCE), ("gourd/target.svg", TARGET))?
         .background(Some(white))
         .raster(true);
-    let mut report = |p: crmorph::morpher::Progress| match p {
-        crmorph::morpher::Progress::Stage(s) => progress.stage(s),
-        crmorph::morpher::Progress::Note(n) => progress.note(n),
-    };
+    let mut report = crate::commands::report(progress);
     let prepared = m.prepare(&mut report)?;
     let c = &prepared.compatible;
     let inspect = crmorph::inspect::inspect_svg(c);

@@ -14,9 +14,9 @@ use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
 use super::gif::{changed_rect, check_frames, playback_schedule};
-use crate::render::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::render::straight_rgba;
+use crate::render::stream::{chunk_len, in_order};
 use crate::{Error, Result};
 
 /// Shortest delay browsers honour for animated images: Chromium and Firefox show frames with a

@@ -10,10 +10,10 @@ use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::apng::write_apng;
 use crate::export::gif::write_gif;
-use crate::render::stream::{chunk_len, in_order};
 use crate::export::{preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
+use crate::render::stream::{chunk_len, in_order};
 use crate::render::{
     frame_pixmap_layers, frame_svg_layers, frame_tree, write_animated_svg, FrameOptions, Layer,
     Mode, Node,

@@ -25,11 +25,11 @@
 
 use super::fit::fit_paths;
 use super::svg_frame::{frame_tree, Layer, Mode};
+use super::timeline::{Playback, Timeline};
 use super::tree::{fixed, path_data, sig, Node, NumFormat, Value};
 use super::FrameOptions;
 use crate::artwork::Scene;
 use crate::error::{Error, Result};
-use super::timeline::{Playback, Timeline};
 use kurbo::{Affine, BezPath, PathEl};
 use rayon::prelude::*;
 

@@ -26,8 +26,8 @@ pub use raster::{
 };
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
 pub(crate) use svg_frame::{frame_tree, Mode};
-pub(crate) use tree::{fixed, Node};
 pub use timeline::{Easing, Playback, Timeline};
+pub(crate) use tree::{fixed, Node};
 pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};

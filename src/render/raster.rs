@@ -1,10 +1,11 @@
 //! Raster frames with resvg/tiny-skia: each warped side rendered alone, then blended pixel-wise
-//! on premultiplied RGBA, `(1 − t)·S + t·T` (end of §3), then composited over the background.
+//! on premultiplied RGBA (end of §3: the target at opacity `b` over the source at opacity `a`,
+//! [`super::dissolve`]), then composited over the background.
 //!
 //! A side is rendered by writing it with [`scene_svg`] and parsing that with usvg, so raster and
-//! SVG frames come from one writer. Blending premultiplied values keeps the result premultiplied
-//! (a convex combination of valid pixels is valid) and gives exactly what the SVG frame's
-//! arithmetic `feComposite` computes.
+//! SVG frames come from one writer. The blend is the composite the SVG frame's two groups with
+//! plain opacity make, on premultiplied values (so the result stays premultiplied), rounded in
+//! 16-bit fixed point: within one level of the exact formula.
 
 use super::svg_frame::{scene_svg, side_svg, Layer};
 use super::FrameOptions;

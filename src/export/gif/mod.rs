@@ -52,9 +52,9 @@ use std::io::Write;
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
-use crate::render::stream::{chunk_len, in_order};
 use super::Timeline;
 use crate::artwork::Rgba;
+use crate::render::stream::{chunk_len, in_order};
 use crate::{Error, Result};
 pub use fidelity::{gif_fidelity, Fidelity};
 use palette::{frame_colours, sample_rgba, FrameColours, Palette, NEUQUANT_SAMPLEFAC};
