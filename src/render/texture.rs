@@ -378,27 +378,21 @@ fn fill_triangle(target: &mut Target, tri: [Point; 3], to_texel: Affine, sampler
     let [m0, m1, m2, m3, m4, m5] = to_texel.as_coeffs();
     let centre = if sampler.nearest { 0.0 } else { 0.5 };
     let (su, sv) = (fixed(m0), fixed(m1));
-    if !sampler.nearest && sampler.holds_footprint(tri, to_texel, centre) {
-        // Every covered pixel's footprint is inside the image, and its coordinates are small
-        // (no clamp needed before the fixed-point cast): each run goes straight to the loop.
-        covered_runs(tri, target.width, target.height, |y, l, r| {
-            let (px, py) = (l as f64 + 0.5, y as f64 + 0.5);
-            let u = m0 * px + m2 * py + m4 - centre;
-            let v = m1 * px + m3 * py + m5 - centre;
-            let row = (y * target.width) as usize;
-            let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize)];
-            let start = ((u * ONE as f64) as i64, (v * ONE as f64) as i64);
-            inner_run(sampler.texels, sampler.width as usize, start, (su, sv), out);
-        });
-        return;
-    }
+    // When every covered pixel's footprint is inside the image, its coordinates are small too
+    // (no clamp before the fixed-point cast), and each run goes straight to the loop.
+    let inside = !sampler.nearest && sampler.holds_footprint(tri, to_texel, centre);
     covered_runs(tri, target.width, target.height, |y, l, r| {
         let (px, py) = (l as f64 + 0.5, y as f64 + 0.5);
         let u = m0 * px + m2 * py + m4 - centre;
         let v = m1 * px + m3 * py + m5 - centre;
         let row = (y * target.width) as usize;
         let out = &mut target.data[4 * (row + l as usize)..4 * (row + r as usize)];
-        sampler.run(fixed(u), fixed(v), su, sv, out);
+        if inside {
+            let start = ((u * ONE as f64) as i64, (v * ONE as f64) as i64);
+            inner_run(sampler.texels, sampler.width as usize, start, (su, sv), out);
+        } else {
+            sampler.run(fixed(u), fixed(v), su, sv, out);
+        }
     });
 }
 
