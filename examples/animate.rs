@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Scene::from_svg(&s.file, &s.svg, "controls")?,
         Scene::from_svg(&t.file, &t.svg, "controls")?,
     );
-    let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
+    let paths = crmorph::morphing::named_morphing_paths(&ss, &ts, &c);
     let frame = FrameOptions::for_scene(&ss);
     let morph = Morph::with_morphing_paths(c.meshes, interp, &ss, &ts, frame, paths)?;
     // 5. One timeline for every exporter: 48 frames over 1.5 s, eased, back and forth.

@@ -37,7 +37,7 @@ fn morph_of(dir: &Path) -> Morph {
     let ((s, ss), (t, ts)) = (read("source.svg"), read("target.svg"));
     let c = build(&s, &t, &MorphOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     let interp = c.interpolator(Method::Disc).unwrap();
-    let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
+    let paths = crmorph::morphing::named_morphing_paths(&ss, &ts, &c);
     let frame = FrameOptions::for_scene(&ss);
     Morph::with_morphing_paths(c.meshes, interp, &ss, &ts, frame, paths).unwrap()
 }

@@ -45,6 +45,8 @@ pub mod json;
 pub mod mapping;
 pub mod mesh;
 pub mod morpher;
+pub mod morphing;
+mod number;
 pub mod quality;
 pub mod render;
 pub mod rigid;

@@ -29,11 +29,11 @@
 //! ```
 
 use crate::artwork::{Rgba, Scene};
-use crate::auto::geometric::MorphingPath;
 use crate::compatible::{build, Compatible, MorphOptions};
 use crate::drawing::{Drawing, ReadOptions};
 use crate::error::{Error, Result};
 use crate::export::{Morph, Motion};
+use crate::morphing::MorphingPath;
 use crate::render::{FrameOptions, Padding};
 use crate::rigid::{Interpolator, Method};
 use crate::skeleton::{Pose, Skeleton, SkeletonControl};
@@ -369,7 +369,7 @@ impl Morpher {
         let paths = if self.method != Method::Disc {
             Vec::new()
         } else if morphing.is_empty() {
-            crate::auto::geometric::named_morphing_paths(&ss, &ts, &c)
+            crate::morphing::named_morphing_paths(&ss, &ts, &c)
         } else {
             morphing
         };

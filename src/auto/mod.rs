@@ -18,7 +18,8 @@
 //!    [`crate::mesh::Parts`], plus a still frame that artwork outside every shape is bound to.
 //!    The disc-based rigid interpolation moves the shapes as one figure (their centroids along
 //!    the barycenter mesh's rigid path, §5 Fig. 9, and their turns on one branch).
-//! 5. [`geometric`]: each source path and target path whose shapes pair morph as one path;
+//! 5. [`geometric`]: each source path and target path whose shapes pair morph as one path
+//!    ([`crate::morphing`]);
 //!    shapes without a partner grow out of or shrink into the nearest paired shape, holes
 //!    without one close or open, and only what cannot morph (groups with opacity, images,
 //!    dashed strokes) is warped and blended.
@@ -80,7 +81,7 @@ pub struct AutoReport {
     /// Shapes without a partner.
     pub lone: Vec<LoneReport>,
     /// Artwork paths that morph as one shape ([`geometric`]).
-    pub morphing: Vec<geometric::MorphingPath>,
+    pub morphing: Vec<crate::morphing::MorphingPath>,
     /// Paths (source and target) with a paired shape that still cross-fade: their paint does
     /// not interpolate, they are not plain paths (a group with opacity or a clip, a dashed
     /// stroke), or their paint order differs between the drawings.

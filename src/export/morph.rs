@@ -6,13 +6,13 @@
 //! sequences are computed in parallel.
 
 use crate::artwork::{ArtworkPair, Scene};
-use crate::auto::geometric::{in_paint_order, overlay_at, MorphingPath};
 use crate::error::Result;
 use crate::export::apng::write_apng;
 use crate::export::gif::write_gif;
 use crate::export::{preview_html, PreviewMesh, Timeline};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
+use crate::morphing::{in_paint_order, overlay_at, MorphingPath};
 use crate::render::stream::{chunk_len, in_order};
 use crate::render::{
     frame_pixmap_layers, frame_svg_layers, frame_tree, write_animated_svg, FrameOptions, Layer,
@@ -183,7 +183,7 @@ impl Morph {
     }
 
     /// [`Morph::new`] where `paths` (automatic mode's matched artwork,
-    /// [`crate::auto::geometric`]) morph as one shape each. In-between frames keep the inputs'
+    /// [`crate::morphing`]) morph as one shape each. In-between frames keep the inputs'
     /// paint order: they are a stack of the rest of the artwork painted below the first
     /// morphing path (blended), that path, the rest painted between it and the next one
     /// (blended), and so on. Paths whose order differs between the drawings are left to the

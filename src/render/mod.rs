@@ -27,7 +27,7 @@ pub use raster::{
 pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
 pub(crate) use svg_frame::{frame_tree, Mode};
 pub use timeline::{Easing, Playback, Timeline};
-pub(crate) use tree::{fixed, Node};
+pub(crate) use tree::Node;
 pub use view::Padding;
 
 use crate::artwork::{Rgba, Scene};

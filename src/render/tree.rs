@@ -7,6 +7,7 @@
 //! SMIL `animateTransform`s). A single frame is the same tree serialized once.
 
 use crate::error::{Error, Result};
+pub(crate) use crate::number::{fixed, sig};
 use kurbo::{Affine, BezPath, PathEl};
 use quick_xml::events::{BytesEnd, BytesStart, Event};
 use quick_xml::Writer;
@@ -281,35 +282,6 @@ fn scaled(v: i64, decimals: usize) -> String {
     s.push('.');
     s.push_str(f.trim_end_matches('0'));
     s
-}
-
-/// `x` with at most `decimals` decimals, trailing zeros dropped, no negative zero.
-pub(crate) fn fixed(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
-}
-
-/// `x` to 9 significant digits (for scale-free values: opacities, gradient geometry, matrices).
-pub(crate) fn sig(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return "0".into();
-    }
-    let r: f64 = format!("{x:.8e}").parse().unwrap_or(x);
-    let s = format!("{r}");
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
 }
 
 /// A `matrix(a b c d e f)` transform attribute. Coefficients that are rounding noise (below

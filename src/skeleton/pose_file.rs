@@ -67,7 +67,7 @@ pub fn pose_svg(
 
 /// A coordinate to 1/1000 of a unit.
 fn num(x: f64) -> String {
-    crate::render::fixed(x, 3)
+    crate::number::fixed(x, 3)
 }
 
 fn escape(s: &str) -> String {

@@ -623,7 +623,7 @@ fn a_counter_closes_smoothly_into_a_glyph_without_one() {
 /// morphs as one shape too.
 #[test]
 fn marked_up_boundary_and_feature_artwork_morphs_as_one_shape() {
-    use crmorph::auto::geometric::named_morphing_paths;
+    use crmorph::morphing::named_morphing_paths;
     let mut total = 0;
     for name in [
         "gourd",

@@ -205,7 +205,7 @@ fn gifs_of_gradients_follow_their_frames_in_oklab() {
         let interp = c.interpolator(Method::Disc).unwrap();
         let scene = crate::common::scene_of;
         let (ss, ts) = (scene(&s), scene(&t));
-        let paths = crmorph::auto::geometric::named_morphing_paths(&ss, &ts, &c);
+        let paths = crmorph::morphing::named_morphing_paths(&ss, &ts, &c);
         let frame = FrameOptions::for_scene(&ss);
         let m = Morph::with_morphing_paths(c.meshes, interp, &ss, &ts, frame, paths).unwrap();
         let tl = Timeline::default();

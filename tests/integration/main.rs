@@ -1,5 +1,6 @@
 //! Integration tests over the fixtures: one binary, one module per area.
 
+mod architecture;
 mod auto;
 mod common;
 mod compatible;
