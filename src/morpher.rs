@@ -124,15 +124,16 @@ pub struct Morpher {
 const FIT_SAMPLES: usize = 32;
 
 impl Morpher {
-    /// A morph of `source` into `target` with the defaults: the source triangulated at
-    /// density 1, the disc method, no poses, the view fitted to the morph, the drawing's own
-    /// size, no background.
+    /// A morph of `source` into `target` with the defaults: the source triangulated at the
+    /// density the source drawing was read with ([`crate::drawing::ReadOptions::density`],
+    /// so one setting serves both), the disc method, no poses, the view fitted to the morph,
+    /// the drawing's own size, no background.
     pub fn new(source: Drawing, target: Drawing) -> Morpher {
         Morpher {
+            density: source.tolerances.density,
             source,
             target,
             triangulated: Side::Source,
-            density: 1.0,
             method: Method::Disc,
             poses: Vec::new(),
             always_skeleton: false,
@@ -152,7 +153,7 @@ impl Morpher {
     }
 
     /// [`Morpher::from_svg`] with `opts`: control ids, density, input policy. The density
-    /// also becomes the triangulation's ([`Morpher::density`]).
+    /// is the triangulation's too, unless [`Morpher::density`] sets another.
     pub fn read_svg(
         source: (&str, &str),
         target: (&str, &str),
@@ -160,9 +161,7 @@ impl Morpher {
     ) -> Result<Morpher> {
         let s = Drawing::from_str(source.0, source.1, opts)?;
         let t = Drawing::from_str(target.0, target.1, opts)?;
-        Ok(Morpher::new(s, t)
-            .density(opts.density)
-            .skeleton_id(&opts.ids.skeleton))
+        Ok(Morpher::new(s, t).skeleton_id(&opts.ids.skeleton))
     }
 
     /// Which drawing is triangulated and mapped onto the other.
@@ -172,7 +171,7 @@ impl Morpher {
     }
 
     /// Vertex density multiplier of the correspondence and refinement (2: twice as many
-    /// vertices per unit length). It should match the density the drawings were read with.
+    /// vertices per unit length). Default: the density the source was read with.
     pub fn density(mut self, density: f64) -> Morpher {
         self.density = density;
         self
@@ -399,5 +398,44 @@ impl Morpher {
     /// view. Every output (animated SVG, frames, GIF, APNG, HTML, JSON) is written from it.
     pub fn build(&self) -> Result<Morph> {
         self.build_with(&mut |_| {}).map(|(m, _)| m)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><rect x="20" y="20" width="60" height="60"/></svg>"#;
+    const CIRCLE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><circle cx="50" cy="50" r="32"/></svg>"#;
+
+    fn vertices(m: &Morpher) -> usize {
+        m.prepare(&mut |_| {})
+            .unwrap()
+            .compatible
+            .meshes
+            .source
+            .len()
+    }
+
+    #[test]
+    fn one_density_reads_and_triangulates() {
+        // Drawings read at density 2 are triangulated at 2 unless told otherwise: the reading's
+        // density is the front door's default, not a second setting left at 1.
+        let opts = ReadOptions {
+            density: 2.0,
+            ..ReadOptions::default()
+        };
+        let dense = Morpher::read_svg(("a.svg", SQUARE), ("b.svg", CIRCLE), &opts).unwrap();
+        let s = Drawing::from_str("a.svg", SQUARE, &opts).unwrap();
+        let t = Drawing::from_str("b.svg", CIRCLE, &opts).unwrap();
+        let by_hand = Morpher::new(s, t);
+        let plain = Morpher::from_svg(("a.svg", SQUARE), ("b.svg", CIRCLE)).unwrap();
+        assert_eq!(vertices(&dense), vertices(&by_hand));
+        assert!(
+            vertices(&dense) > vertices(&plain),
+            "{} vs {}",
+            vertices(&dense),
+            vertices(&plain)
+        );
     }
 }

@@ -33,6 +33,10 @@ pub struct Tolerances {
     pub max_edge: f64,
     /// Largest triangle area allowed by Delaunay refinement.
     pub max_area: f64,
+    /// The vertex density multiplier these were made for (1 when the one asked for was not a
+    /// positive number): a drawing remembers the density it was read with, so that what is
+    /// built from it can default to the same.
+    pub density: f64,
 }
 
 impl Tolerances {
@@ -51,6 +55,7 @@ impl Tolerances {
             snap: diagonal * 1e-9,
             max_edge,
             max_area: max_edge * max_edge,
+            density,
         }
     }
 }
