@@ -425,17 +425,16 @@ mod tests {
             density: 2.0,
             ..ReadOptions::default()
         };
-        let dense = Morpher::read_svg(("a.svg", SQUARE), ("b.svg", CIRCLE), &opts).unwrap();
+        let read = Morpher::read_svg(("a.svg", SQUARE), ("b.svg", CIRCLE), &opts).unwrap();
         let s = Drawing::from_str("a.svg", SQUARE, &opts).unwrap();
         let t = Drawing::from_str("b.svg", CIRCLE, &opts).unwrap();
         let by_hand = Morpher::new(s, t);
-        let plain = Morpher::from_svg(("a.svg", SQUARE), ("b.svg", CIRCLE)).unwrap();
-        assert_eq!(vertices(&dense), vertices(&by_hand));
-        assert!(
-            vertices(&dense) > vertices(&plain),
-            "{} vs {}",
-            vertices(&dense),
-            vertices(&plain)
+        let (at_two, at_one) = (
+            vertices(&by_hand.clone().density(2.0)),
+            vertices(&by_hand.clone().density(1.0)),
         );
+        assert!(at_two > at_one, "{at_two} vs {at_one}");
+        assert_eq!(vertices(&by_hand), at_two);
+        assert_eq!(vertices(&read), at_two);
     }
 }
