@@ -38,6 +38,7 @@ pub mod correspondence;
 pub mod drawing;
 pub mod error;
 pub mod export;
+pub mod frame;
 pub mod geometry;
 pub mod input;
 pub mod inspect;

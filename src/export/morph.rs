@@ -10,12 +10,13 @@ use crate::error::Result;
 use crate::export::apng::write_apng;
 use crate::export::gif::write_gif;
 use crate::export::{preview_html, PreviewMesh, Timeline};
+use crate::frame::{Frame, FrameLayer};
 use crate::geometry::Point;
 use crate::mesh::CompatibleMeshes;
 use crate::morphing::{in_paint_order, overlay_at, MorphingPath};
 use crate::render::stream::{chunk_len, in_order};
 use crate::render::{
-    frame_pixmap_layers, frame_svg_layers, frame_tree, write_animated_svg, FrameOptions, Layer,
+    frame_pixmap_layers, frame_svg_layers, frame_tree, layers_of, write_animated_svg, FrameOptions,
     Mode, Node,
 };
 use crate::rigid::Interpolator;
@@ -109,25 +110,6 @@ enum Part {
     Rest(Box<ArtworkPair>),
     /// Consecutive morphing paths (indices into [`Morphing::paths`]), drawn unblended.
     Paths(std::ops::Range<usize>),
-}
-
-/// A frame's layers, owning their scenes (see [`Layer`]).
-enum Owned {
-    Blend(Scene, Scene),
-    Over(Scene),
-}
-
-impl Owned {
-    fn layer(&self) -> Layer<'_> {
-        match self {
-            Owned::Blend(s, g) => Layer::Blend(s, g),
-            Owned::Over(o) => Layer::Over(o),
-        }
-    }
-}
-
-fn layers(owned: &[Owned]) -> Vec<Layer<'_>> {
-    owned.iter().map(Owned::layer).collect()
 }
 
 impl Morph {
@@ -243,25 +225,26 @@ impl Morph {
         Ok(m)
     }
 
-    /// The layers of the frame at `t` whose mesh is `v`: the exact inputs at the ends
-    /// (`warped` false) and in between, with morphing paths, the stack of parts. `warped`
-    /// warps even at the ends, so that every animation keyframe has the same structure.
-    fn layers_at(&self, v: &[Point], t: f64, warped: bool) -> Result<Vec<Owned>> {
-        let whole = |pair: &ArtworkPair| -> Result<Owned> {
-            let (s, g) = if warped {
+    /// The frame at `t` whose mesh is `v`: the exact inputs at the ends (`warped` false) and
+    /// in between, with morphing paths, the stack of parts. `warped` warps even at the ends,
+    /// so that every animation keyframe has the same structure.
+    fn frame_of(&self, v: &[Point], t: f64, warped: bool) -> Result<Frame> {
+        let t = crate::rigid::clamp_time(t);
+        let whole = |pair: &ArtworkPair| -> Result<FrameLayer> {
+            let (source, target) = if warped {
                 pair.warped_at(v)?
             } else {
                 pair.at(v)?
             };
-            Ok(Owned::Blend(s, g))
+            Ok(FrameLayer::Blend { source, target })
         };
-        match &self.morphing {
+        let layers = match &self.morphing {
             Some(m) if warped || (t > 0.0 && t < 1.0) => m
                 .stack
                 .iter()
                 .map(|part| match part {
                     Part::Rest(pair) => whole(pair),
-                    Part::Paths(r) => Ok(Owned::Over(overlay_at(
+                    Part::Paths(r) => Ok(FrameLayer::Over(overlay_at(
                         &m.paths[r.clone()],
                         &self.meshes,
                         v,
@@ -269,9 +252,38 @@ impl Morph {
                         &m.header,
                     ))),
                 })
-                .collect(),
-            _ => Ok(vec![whole(&self.artwork)?]),
-        }
+                .collect::<Result<_>>()?,
+            _ => vec![whole(&self.artwork)?],
+        };
+        Ok(Frame { t, layers })
+    }
+
+    /// The frame at `t` (the frame model, [`crate::frame`]): what [`Morph::svg_at`] and
+    /// [`Morph::pixmap_at`] draw. At t = 0 and t = 1 its scenes are the exact input drawings.
+    pub fn frame_at(&self, t: f64) -> Result<Frame> {
+        self.frame_of(&self.vertices_at(t), t, false)
+    }
+
+    /// The keyframe at `t`: [`Morph::frame_at`] with the artwork warped even at the ends, so
+    /// that keyframes at every `t` have the same layers, items and path structure (what an
+    /// animation interpolates between: the animated SVG and Lottie).
+    pub fn keyframe_at(&self, t: f64) -> Result<Frame> {
+        self.frame_of(&self.vertices_at(t), t, true)
+    }
+
+    /// The keyframes at `ts` ([`Morph::keyframe_at`]), solved and warped in parallel, each
+    /// reported to the [`Morph::on_frame`] hook.
+    pub fn keyframes_at(&self, ts: &[f64]) -> Result<Vec<Frame>> {
+        let meshes = self.motion.frames(ts);
+        meshes
+            .par_iter()
+            .zip(ts)
+            .map(|(v, &t)| {
+                let frame = self.frame_of(v, t, true);
+                self.frame_done();
+                frame
+            })
+            .collect()
     }
 
     /// The box of what the frames at `ts` draw, both drawings' warped artwork where the
@@ -281,17 +293,18 @@ impl Morph {
         use crate::artwork::union_bounds;
         let mut b = None;
         for &t in ts {
-            let v = self.vertices_at(t);
-            for layer in self.layers_at(&v, t, false)? {
-                // A side the dissolve leaves out (the source at t = 1, the target at t = 0)
-                // draws nothing, however far its warp throws it.
-                let (ws, wt) = crate::render::dissolve(t);
+            let frame = self.frame_at(t)?;
+            // A side the dissolve leaves out (the source at t = 1, the target at t = 0) draws
+            // nothing, however far its warp throws it.
+            let (ws, wt) = frame.weights();
+            for layer in &frame.layers {
                 let seen = |on: bool, s: &Scene| if on { s.bounds() } else { None };
-                b = match &layer {
-                    Owned::Blend(s, g) => {
-                        union_bounds(b, union_bounds(seen(ws > 0.0, s), seen(wt > 0.0, g)))
-                    }
-                    Owned::Over(o) => union_bounds(b, o.bounds()),
+                b = match layer {
+                    FrameLayer::Blend { source, target } => union_bounds(
+                        b,
+                        union_bounds(seen(ws > 0.0, source), seen(wt > 0.0, target)),
+                    ),
+                    FrameLayer::Over(o) => union_bounds(b, o.bounds()),
                 };
             }
         }
@@ -362,14 +375,14 @@ impl Morph {
 
     /// Frame `t` as a standalone SVG.
     pub fn svg_at(&self, t: f64) -> Result<String> {
-        let owned = self.layers_at(&self.vertices_at(t), t, false)?;
-        frame_svg_layers(&layers(&owned), t, &self.frame)
+        let frame = self.frame_at(t)?;
+        frame_svg_layers(&layers_of(&frame), frame.t, &self.frame)
     }
 
     /// Frame `t` rendered (premultiplied RGBA over the background).
     pub fn pixmap_at(&self, t: f64) -> Result<Pixmap> {
-        let owned = self.layers_at(&self.vertices_at(t), t, false)?;
-        frame_pixmap_layers(&layers(&owned), t, &self.frame)
+        let frame = self.frame_at(t)?;
+        frame_pixmap_layers(&layers_of(&frame), frame.t, &self.frame)
     }
 
     /// Every frame of `timeline` as a standalone SVG, in frame order.
@@ -462,21 +475,16 @@ impl Morph {
         let ts = tl.morph_times();
         let trees = |frames: &[usize]| -> Result<Vec<Node>> {
             let times: Vec<f64> = frames.iter().map(|&i| ts[i]).collect();
-            let meshes = self.motion.frames(&times);
-            meshes
+            let keyframes = self.keyframes_at(&times)?;
+            Ok(keyframes
                 .par_iter()
-                .zip(times)
-                .map(|(v, t)| {
-                    let owned = self.layers_at(v, t, true);
-                    self.frame_done();
-                    Ok(frame_tree(&layers(&owned?), t, &self.frame, Mode::Keyframe))
-                })
-                .collect()
+                .map(|f| frame_tree(&layers_of(f), f.t, &self.frame, Mode::Keyframe))
+                .collect())
         };
         // The static values (what a viewer without SMIL shows) are the source drawing exactly.
         let first = self.motion.frames(&ts[..1]);
-        let base = self.exact_source_layers(&first[0])?;
-        let base = frame_tree(&layers(&base), 0.0, &self.frame, Mode::Keyframe);
+        let base = self.exact_source_frame(&first[0])?;
+        let base = frame_tree(&layers_of(&base), 0.0, &self.frame, Mode::Keyframe);
         write_animated_svg(&tl, &self.frame, trees, Some(base), out)
     }
 
@@ -484,10 +492,13 @@ impl Morph {
     /// geometry where the keyframe has a warped copy of it: blended parts as their exact
     /// source scenes, and each morphing path that alone draws its source path as that path,
     /// with the source paths of the shapes riding in it.
-    fn exact_source_layers(&self, v: &[Point]) -> Result<Vec<Owned>> {
+    fn exact_source_frame(&self, v: &[Point]) -> Result<Frame> {
         let Some(m) = &self.morphing else {
-            let (s, g) = self.artwork.at(v)?;
-            return Ok(vec![Owned::Blend(s, g)]);
+            let (source, target) = self.artwork.at(v)?;
+            return Ok(Frame {
+                t: 0.0,
+                layers: vec![FrameLayer::Blend { source, target }],
+            });
         };
         let items = m.header.items();
         // The source paths riding in `p`, or `None` when one is not a plain path.
@@ -513,8 +524,8 @@ impl Morph {
             .iter()
             .map(|part| match part {
                 Part::Rest(pair) => {
-                    let (s, g) = pair.at(v)?;
-                    Ok(Owned::Blend(s, g))
+                    let (source, target) = pair.at(v)?;
+                    Ok(FrameLayer::Blend { source, target })
                 }
                 Part::Paths(r) => {
                     let mut scene =
@@ -526,10 +537,11 @@ impl Morph {
                             }
                         }
                     }
-                    Ok(Owned::Over(scene))
+                    Ok(FrameLayer::Over(scene))
                 }
             })
-            .collect()
+            .collect::<Result<_>>()
+            .map(|layers| Frame { t: 0.0, layers })
     }
 
     /// The morph as an animated GIF (frames rendered in parallel; composited over the

@@ -24,11 +24,14 @@ pub use animated::{animated_svg, animated_svg_layers};
 pub use raster::{
     encode_png, frame_pixmap, frame_pixmap_layers, frame_png, render_scene, straight_rgba, svg_png,
 };
-pub use svg_frame::{frame_svg, frame_svg_layers, scene_svg, Layer};
+pub use svg_frame::{frame_svg, frame_svg_layers, layers_of, scene_svg, Layer};
 pub(crate) use svg_frame::{frame_tree, Mode};
 pub use timeline::{Easing, Playback, Timeline};
 pub(crate) use tree::Node;
 pub use view::Padding;
+
+/// Re-exported from the frame model, where it belongs: every exporter weighs blended layers by it.
+pub use crate::frame::dissolve;
 
 use crate::artwork::{Rgba, Scene};
 use crate::geometry::Point;
@@ -122,12 +125,3 @@ pub(crate) fn check_raster_size(
 
 #[cfg(test)]
 mod tests;
-
-/// The opacities `(a, b)` of the source and the target side of a cross-dissolve at `t`:
-/// `a = min(1, 2(1 − t))` under `b = min(1, 2t)` (see [`svg_frame`]). The target fades in over
-/// the source in the first half and the uncovered source fades out in the second; each is a
-/// plain group opacity, which every SVG renderer implements alike.
-pub fn dissolve(t: f64) -> (f64, f64) {
-    let t = crate::rigid::clamp_time(t);
-    ((2.0 * (1.0 - t)).min(1.0), (2.0 * t).min(1.0))
-}

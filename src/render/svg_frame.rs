@@ -33,6 +33,7 @@ use crate::artwork::{
     Rgba, Scene, Spread, Stroke,
 };
 use crate::error::Result;
+use crate::frame::{Frame, FrameLayer};
 use crate::geometry::Point;
 use kurbo::Affine;
 
@@ -57,6 +58,20 @@ pub enum Layer<'a> {
     Blend(&'a Scene, &'a Scene),
     /// Artwork painted as it is over the layers below: paths that morph as one shape.
     Over(&'a Scene),
+}
+
+impl<'a> From<&'a FrameLayer> for Layer<'a> {
+    fn from(l: &'a FrameLayer) -> Self {
+        match l {
+            FrameLayer::Blend { source, target } => Layer::Blend(source, target),
+            FrameLayer::Over(o) => Layer::Over(o),
+        }
+    }
+}
+
+/// The layers of `frame`, borrowed, as the renderers take them.
+pub fn layers_of(frame: &Frame) -> Vec<Layer<'_>> {
+    frame.layers.iter().map(Layer::from).collect()
 }
 
 /// The frame at `t` made of `layers`, bottom first: each [`Layer::Blend`] dissolved on its own

@@ -30,6 +30,7 @@ const LAYERS: &[&str] = &[
     "inspect",
     "skeleton",
     "morphing",
+    "frame",
     "render",
     "auto",
     "export",
