@@ -371,7 +371,7 @@ impl std::error::Error for Usage {}
 fn output_format(out: &Path, allowed: &[Format], command: &str) -> Result<Format> {
     let names = allowed
         .iter()
-        .map(|f| format!(".{}", format!("{f:?}").to_lowercase()))
+        .map(|f| f.extension().to_string())
         .collect::<Vec<_>>()
         .join(", ");
     match Format::of(out) {
@@ -666,6 +666,8 @@ pub(crate) fn morph_pair(a: &MorphArgs, progress: &Progress) -> Result<Morphed> 
             Format::Png,
             Format::Html,
             Format::Json,
+            Format::Lottie,
+            Format::DotLottie,
         ],
         "morph",
     )?;
@@ -701,7 +703,9 @@ pub(crate) fn morph_pair(a: &MorphArgs, progress: &Progress) -> Result<Morphed> 
     let main = match fmt {
         Format::Gif => Some(Export::Gif),
         Format::Png => Some(Export::Apng),
-        Format::Svg | Format::Html => Some(Export::AnimatedSvg),
+        Format::Svg | Format::Html | Format::Lottie | Format::DotLottie => {
+            Some(Export::AnimatedSvg)
+        }
         _ => None,
     };
     let dir_reports = match frame_files.is_empty() {
@@ -755,6 +759,18 @@ pub(crate) fn morph_pair(a: &MorphArgs, progress: &Progress) -> Result<Morphed> 
         Format::Svg => write_streamed(out, |w| morph.write_animated_svg(&timeline, w))?,
         Format::Gif => write_streamed(out, |w| morph.write_gif(&timeline, w))?,
         Format::Png => write_streamed(out, |w| morph.write_apng(&timeline, w))?,
+        Format::Lottie | Format::DotLottie => {
+            let name = lottie_name(out);
+            let lottie = morph.lottie(&timeline, &name)?;
+            for n in &lottie.notes {
+                progress.note(&format!("{}: {n}", out.display()));
+            }
+            if fmt == Format::Lottie {
+                write_atomic(out, lottie.json.as_bytes())?;
+            } else {
+                write_atomic(out, &lottie.dotlottie(&name)?)?;
+            }
+        }
         _ => {
             let title = format!(
                 "{} → {}",
@@ -775,6 +791,17 @@ pub(crate) fn morph_pair(a: &MorphArgs, progress: &Progress) -> Result<Morphed> 
         setup,
         render: started.elapsed() - setup,
     })
+}
+
+/// The animation's name in a Lottie file: the output's file name without `.lottie(.json)`.
+fn lottie_name(out: &Path) -> String {
+    let name = file_name(out);
+    let lower = name.to_ascii_lowercase();
+    let cut = [".lottie.json", ".lottie"]
+        .iter()
+        .find(|e| lower.ends_with(*e))
+        .map_or(name.len(), |e| name.len() - e.len());
+    name[..cut].to_string()
 }
 
 fn file_name(p: &Path) -> String {

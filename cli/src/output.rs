@@ -22,13 +22,22 @@ pub(crate) enum Format {
     Gif,
     /// `.html`
     Html,
+    /// `.lottie.json`: Lottie JSON.
+    Lottie,
+    /// `.lottie`: a dotLottie archive.
+    DotLottie,
 }
 
 impl Format {
     /// The format named by `path`'s extension, if crmorph knows it.
     pub(crate) fn of(path: &Path) -> Option<Format> {
+        let name = path.file_name()?.to_str()?.to_ascii_lowercase();
+        if name.ends_with(".lottie.json") {
+            return Some(Format::Lottie);
+        }
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
+            "lottie" => Format::DotLottie,
             "svg" => Format::Svg,
             "json" => Format::Json,
             "png" | "apng" => Format::Png,
@@ -36,6 +45,19 @@ impl Format {
             "html" | "htm" => Format::Html,
             _ => return None,
         })
+    }
+
+    /// The extension that names the format, with its dot, for messages.
+    pub(crate) fn extension(self) -> &'static str {
+        match self {
+            Format::Svg => ".svg",
+            Format::Json => ".json",
+            Format::Png => ".png",
+            Format::Gif => ".gif",
+            Format::Html => ".html",
+            Format::Lottie => ".lottie.json",
+            Format::DotLottie => ".lottie",
+        }
     }
 }
 
@@ -355,6 +377,12 @@ mod tests {
         assert_eq!(n, 1);
         assert_eq!(Format::of(Path::new("x.SVG")), Some(Format::Svg));
         assert_eq!(Format::of(Path::new("x.txt")), None);
+        assert_eq!(
+            Format::of(Path::new("a/x.Lottie.JSON")),
+            Some(Format::Lottie)
+        );
+        assert_eq!(Format::of(Path::new("x.json")), Some(Format::Json));
+        assert_eq!(Format::of(Path::new("x.lottie")), Some(Format::DotLottie));
     }
 
     #[test]

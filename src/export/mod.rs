@@ -6,11 +6,13 @@
 pub mod apng;
 pub mod gif;
 pub mod html;
+pub mod lottie;
 pub mod morph;
 
 pub use apng::encode_apng;
 pub use gif::{encode_gif, gif_fidelity, Fidelity};
 pub use html::{preview_html, PreviewMesh};
+pub use lottie::Lottie;
 pub use morph::{Export, Morph, Motion};
 // The timeline is part of what a frame is (its time), so it lives below the exporters, in
 // `render`; it is re-exported here, where exporters' users look for it.

@@ -21,6 +21,8 @@ pub mod view;
 
 pub(crate) use animated::write_animated_svg;
 pub use animated::{animated_svg, animated_svg_layers};
+pub(crate) use fit::fit_paths;
+pub(crate) use raster::view_transform;
 pub use raster::{
     encode_png, frame_pixmap, frame_pixmap_layers, frame_png, render_scene, straight_rgba, svg_png,
 };

@@ -29,6 +29,21 @@ impl Easing {
             Easing::EaseInOut => tau * tau * (3.0 - 2.0 * tau),
         }
     }
+
+    /// The slope `dt/dτ` of [`Easing::apply`] at `tau` (clamped like it): what a player that
+    /// eases between two keyframes needs to follow this easing exactly (Lottie's bezier
+    /// easing, [`crate::export::lottie`]).
+    pub fn slope(self, tau: f64) -> f64 {
+        let tau = if tau.is_nan() {
+            0.0
+        } else {
+            tau.clamp(0.0, 1.0)
+        };
+        match self {
+            Easing::Linear => 1.0,
+            Easing::EaseInOut => 6.0 * tau * (1.0 - tau),
+        }
+    }
 }
 
 /// What happens when the morph reaches the target.
