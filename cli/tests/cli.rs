@@ -879,3 +879,63 @@ fn the_view_grows_to_hold_a_morph_that_leaves_it() {
     ]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// Issue 15: `-o NAME.lottie.json` writes Lottie JSON and `-o NAME.lottie` a dotLottie
+/// archive holding the same animation and a manifest; a morph of raster images is refused
+/// with a one-line error and no file.
+#[test]
+fn lottie_outputs_are_json_and_a_dotlottie_archive() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("gourd.lottie.json");
+    let archive = dir.path().join("gourd.lottie");
+    morph_gourd(&json, &[]);
+    morph_gourd(&archive, &[]);
+    let text = std::fs::read_to_string(&json).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(doc["nm"], "gourd");
+    assert!(doc["layers"].as_array().is_some_and(|l| !l.is_empty()));
+    let mut zip = zip::ZipArchive::new(std::fs::File::open(&archive).unwrap()).unwrap();
+    let mut read = |name: &str| {
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut zip.by_name(name).unwrap(), &mut s).unwrap();
+        s
+    };
+    assert_eq!(
+        read("animations/gourd.json"),
+        text,
+        "the archive holds the same JSON"
+    );
+    let manifest: serde_json::Value = serde_json::from_str(&read("manifest.json")).unwrap();
+    assert_eq!(manifest["animations"][0]["id"], "gourd");
+    assert_eq!(manifest["animations"][0]["loop"], false);
+    let looping = dir.path().join("loop.lottie");
+    morph_gourd(&looping, &["--loop"]);
+    let mut zip = zip::ZipArchive::new(std::fs::File::open(&looping).unwrap()).unwrap();
+    let mut s = String::new();
+    std::io::Read::read_to_string(&mut zip.by_name("manifest.json").unwrap(), &mut s).unwrap();
+    assert!(s.contains("\"loop\":true"), "{s}");
+    // Same input, same bytes: the archive's time stamps are fixed.
+    let other = tempfile::tempdir().unwrap();
+    let again = other.path().join("gourd.lottie");
+    morph_gourd(&again, &[]);
+    let same = std::fs::read(&archive).unwrap() == std::fs::read(&again).unwrap();
+    assert!(same, "the same morph gives the same archive");
+    let raster = dir.path().join("faces.lottie");
+    let img = |f: &str| fixture(&format!("images/faces/{f}"));
+    let o = run(&[
+        os("morph"),
+        os(&img("source.png")),
+        os(&img("target.png")),
+        os("--controls"),
+        os(&img("source-controls.svg")),
+        os(&img("target-controls.svg")),
+        os("-o"),
+        os(&raster),
+        os("-q"),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("cannot be written as Lottie"), "{err}");
+    assert!(!raster.exists(), "no output on failure");
+}

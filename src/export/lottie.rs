@@ -17,7 +17,9 @@
 //! makes the value move linearly in `t` while `t` follows the easing — exact, since the easings
 //! are cubics in `τ` ([`Easing::slope`]). Keyframes that the span between their neighbours already
 //! reproduces (a quarter pixel for geometry, 1/1000 for colours and opacities) are dropped,
-//! per property. Yoyo playback is written out (forwards, then back); whether a player loops is
+//! per property. The composition ends one frame after the last keyframe, since players stop on
+//! frame `op − 1`: played once, the animation rests on the target exactly (so it lasts one
+//! frame, 1/60 s, longer than the timeline). Yoyo playback is written out (forwards, then back); whether a player loops is
 //! the player's setting, and the dotLottie manifest says so for [`Playback::Loop`] and
 //! [`Playback::Yoyo`].
 //!
@@ -394,7 +396,7 @@ impl Collector {
         let doc = json!({
             "v": "5.12.0",
             "nm": name,
-            "fr": FRAME_RATE,
+            "fr": num(FRAME_RATE),
             "ip": 0,
             "op": play.out_point(),
             "w": self.opts.size.0,
@@ -826,9 +828,10 @@ impl Play {
         }
     }
 
-    /// The composition's last frame.
+    /// The composition's out point: one frame after the last keyframe, so that the last frame
+    /// (`op − 1`, where players stop) shows it.
     fn out_point(&self) -> Value {
-        num((self.order.len() - 1) as f64 * self.frames_per_step)
+        num((self.order.len() - 1) as f64 * self.frames_per_step + 1.0)
     }
 
     /// The keyframed property of `values` (one per timeline frame): static when they all

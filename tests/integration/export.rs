@@ -218,3 +218,101 @@ fn gifs_of_gradients_follow_their_frames_in_oklab() {
         assert!(f.mean_smoothed_delta_e < smoothed, "{name}: {f:?}");
     }
 }
+
+/// Every `sh` (path) property of a Lottie document, with where it is.
+fn lottie_shapes<'a>(
+    v: &'a serde_json::Value,
+    at: String,
+    out: &mut Vec<(String, &'a serde_json::Value)>,
+) {
+    match v {
+        serde_json::Value::Object(m) => {
+            if m.get("ty").and_then(|t| t.as_str()) == Some("sh") {
+                out.push((at.clone(), &m["ks"]));
+            }
+            if let Some(pt) = m.get("pt") {
+                out.push((format!("{at}/pt"), pt));
+            }
+            for (k, x) in m {
+                lottie_shapes(x, format!("{at}/{k}"), out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            for (k, x) in a.iter().enumerate() {
+                lottie_shapes(x, format!("{at}/{k}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Issue 15: the Lottie export of every fixture pair has paths whose keyframes share vertex
+/// counts (players interpolate vertex by vertex), timing that follows the timeline (60 fps,
+/// the last keyframe one frame before the out point), the dissolve as the two sides' layer
+/// opacity, and the same bytes for the same input.
+#[test]
+fn lottie_paths_share_vertex_counts_and_sides_follow_the_dissolve() {
+    let mut dissolves = 0;
+    for (_, s, t) in pairs() {
+        let m = morph_of(&s, &t);
+        let tl = Timeline::default();
+        let lottie = m.lottie(&tl, "morph").unwrap();
+        let doc: serde_json::Value = serde_json::from_str(&lottie.json).unwrap();
+        assert_eq!(doc["fr"], 60);
+        let op = doc["op"].as_f64().unwrap();
+        assert_eq!(op, tl.duration * 60.0 + 1.0, "{}", s.display());
+        let mut shapes = Vec::new();
+        lottie_shapes(&doc, String::new(), &mut shapes);
+        assert!(!shapes.is_empty(), "{}: no paths", s.display());
+        for (at, ks) in &shapes {
+            let values: Vec<&serde_json::Value> = if ks["a"] == 1 {
+                ks["k"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|k| &k["s"][0])
+                    .collect()
+            } else {
+                vec![&ks["k"]]
+            };
+            let n = values[0]["v"].as_array().unwrap().len();
+            for v in &values {
+                for key in ["v", "i", "o"] {
+                    assert_eq!(v[key].as_array().unwrap().len(), n, "{} {at}", s.display());
+                }
+            }
+            if ks["a"] == 1 {
+                let keys = ks["k"].as_array().unwrap();
+                let last = keys.last().unwrap()["t"].as_f64().unwrap();
+                assert!(
+                    last <= op - 1.0 + 1e-9,
+                    "{} {at}: a keyframe past the end",
+                    s.display()
+                );
+            }
+        }
+        // The first layers of a marked-up morph are the dissolve's sides: the target (top)
+        // fades in over the first half, the source out over the second.
+        let layers = doc["layers"].as_array().unwrap();
+        let names: Vec<&str> = layers.iter().map(|l| l["nm"].as_str().unwrap()).collect();
+        if names == ["target 1", "source 1"] {
+            dissolves += 1;
+            let at = |l: &serde_json::Value, frame: f64| -> f64 {
+                let o = &l["ks"]["o"];
+                let keys = o["k"].as_array().unwrap();
+                keys.iter()
+                    .find(|k| (k["t"].as_f64().unwrap() - frame).abs() < 1e-6)
+                    .map(|k| k["s"][0].as_f64().unwrap())
+                    .unwrap_or(f64::NAN)
+            };
+            assert_eq!((at(&layers[0], 0.0), at(&layers[1], 0.0)), (0.0, 100.0));
+            assert_eq!((at(&layers[0], 120.0), at(&layers[1], 120.0)), (100.0, 0.0));
+        }
+        assert_eq!(
+            lottie.json,
+            m.lottie(&tl, "morph").unwrap().json,
+            "same input, same bytes"
+        );
+    }
+    assert!(dissolves > 0, "some fixture is one dissolved pair of sides");
+}

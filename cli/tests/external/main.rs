@@ -1,6 +1,6 @@
 //! Tests that need a program outside Rust: headless Chromium and Firefox (what a browser shows),
-//! librsvg (the other SVG renderer of the four crmorph's SVG must render alike in) and Node (the
-//! HTML preview's script).
+//! librsvg (the other SVG renderer of the four crmorph's SVG must render alike in), Node (the
+//! HTML preview's script) and the Lottie players and schema of `tools/lottie` (npm).
 //!
 //! This binary has its own harness (libtest-mimic) so that a missing program is reported as what
 //! it is: each test that needs it is listed as `ignored`, and one note per program says how to
@@ -9,6 +9,7 @@
 //! `CRMORPH_REQUIRE_TOOLS=1`, which turns a missing program into a failing test.
 
 mod browser;
+mod lottie;
 mod node;
 mod renderers;
 mod tools;
@@ -20,6 +21,7 @@ fn main() {
     let mut trials = Vec::new();
     trials.extend(browser::trials());
     trials.extend(node::trials());
+    trials.extend(lottie::trials());
     trials.extend(renderers::trials());
     libtest_mimic::run(&args, trials).exit();
 }

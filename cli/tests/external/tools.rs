@@ -54,7 +54,7 @@ fn find(env: &str, names: &[&str], what: &str, install: &str, tests: usize) -> F
                 Some(p) => format!("{} does not run", p.display()),
                 None => format!("no {what} was found"),
             };
-            if !required() {
+            if !required() && tests > 0 {
                 note(
                     what,
                     tests,
@@ -132,4 +132,48 @@ pub(crate) fn chromium_screenshot<'a>(
     .arg(format!("--user-data-dir={}", profile.display()))
     .arg(format!("--window-size={},{}", size.0, size.1))
     .arg(format!("--screenshot={}", out.display()))
+}
+
+/// The npm packages of `tools/lottie` (lottie-web, dotlottie-web, the Lottie schema), installed
+/// by `npm ci --prefix tools/lottie`: the folder when all are there.
+pub(crate) fn lottie_packages(tests: usize) -> Found {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tools/lottie");
+    let packages = [
+        "lottie-web",
+        "@lottiefiles/dotlottie-web",
+        "@lottie-animation-community/lottie-specs",
+    ];
+    let missing: Vec<&str> = packages
+        .iter()
+        .copied()
+        .filter(|p| {
+            !dir.join("node_modules")
+                .join(p)
+                .join("package.json")
+                .is_file()
+        })
+        .collect();
+    if missing.is_empty() {
+        return Found::Yes(dir);
+    }
+    let why = format!("the npm packages {} were not found", missing.join(", "));
+    if !required() && tests > 0 {
+        note(
+            "the Lottie players and schema",
+            tests,
+            &format!("{why}; run `npm ci --prefix tools/lottie` (needs Node.js)"),
+        );
+    }
+    Found::Missing(why)
+}
+
+/// Every one of `found`: the first one's path when all were found, else the first missing.
+pub(crate) fn all(found: &[Found]) -> Found {
+    match found.iter().find(|f| matches!(f, Found::Missing(_))) {
+        Some(missing) => missing.clone(),
+        None => found
+            .first()
+            .cloned()
+            .unwrap_or_else(|| Found::Missing("no program asked for".into())),
+    }
 }
