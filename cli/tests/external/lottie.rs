@@ -1,6 +1,6 @@
 //! crmorph's Lottie export as players and the specification see it (issue 15): the JSON
 //! validates against the Lottie JSON schema (lottie-specs), and two players — lottie-web (its
-//! SVG renderer) and dotlottie-web (ThorVG, WebAssembly, playing the `.lottie` archive) — show
+//! SVG renderer) and dotlottie-web (`ThorVG`, WebAssembly, playing the `.lottie` archive) — show
 //! at frame `t · duration · fps` what `crmorph frame --at t` renders.
 //!
 //! The players and the schema are npm packages pinned in `tools/lottie` (`npm ci --prefix
