@@ -25,6 +25,9 @@
 //! let morph = Morpher::from_svg(("square.svg", square), ("circle.svg", circle))?.build()?;
 //! let svg = morph.animated_svg(&Timeline::default())?;
 //! assert!(svg.contains("<animate"));
+//! // The same morph for Lottie players (JSON; `.dotlottie(name)` zips it).
+//! let lottie = morph.lottie(&Timeline::default(), "square to circle")?;
+//! assert!(lottie.json.starts_with('{'));
 //! # Ok::<(), crmorph::Error>(())
 //! ```
 

@@ -40,10 +40,28 @@ pub struct MappingOptions {
     pub max_steps: usize,
     /// Smallest step in `t` before giving up. Default: 1/4096.
     pub min_step: f64,
-    /// When neither the BSM path nor the BSM with features carried by the boundary can be
-    /// followed without folding, try again with straight-line intermediate curves before
-    /// reporting the failure. Default: true.
-    pub linear_fallback: bool,
+    /// The last family of intermediate curves tried: the map follows the BSM's
+    /// ([`Intermediates::Bsm`]), then, if that folds, the BSM with features carried by the
+    /// boundary, then straight lines, stopping after this one. Default:
+    /// [`Intermediates::Straight`] (a map is then almost always found); [`Intermediates::Bsm`]
+    /// is the paper's method alone.
+    pub last_resort: Intermediates,
+}
+
+/// A family of intermediate curves the composite map follows from one side to the other (§5),
+/// in the order they are tried: the paper's, then two that exist where it folds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
+pub enum Intermediates {
+    /// The barycenter-based shape model's curves ([`ShapeModel::new`], §5).
+    #[default]
+    Bsm,
+    /// The BSM with the features carried by the boundary around them
+    /// ([`ShapeModel::carried`]): tried when the BSM's intermediate features cross. Needs a
+    /// feature curve besides the boundary.
+    Carried,
+    /// Straight lines from each curve vertex to its twin ([`ShapeModel::linear`]), starting
+    /// with one whole step.
+    Straight,
 }
 
 impl MappingOptions {
@@ -52,7 +70,7 @@ impl MappingOptions {
         initial_steps: 4,
         max_steps: 2048,
         min_step: 1.0 / 4096.0,
-        linear_fallback: true,
+        last_resort: Intermediates::Straight,
     };
 
     /// Sets [`MappingOptions::initial_steps`].
@@ -67,9 +85,9 @@ impl MappingOptions {
         self
     }
 
-    /// Sets [`MappingOptions::linear_fallback`].
-    pub fn with_linear_fallback(mut self, on: bool) -> Self {
-        self.linear_fallback = on;
+    /// Sets [`MappingOptions::last_resort`].
+    pub fn with_last_resort(mut self, last: Intermediates) -> Self {
+        self.last_resort = last;
         self
     }
 
@@ -98,11 +116,8 @@ pub struct MappingStats {
     pub vertices: usize,
     /// Triangles of the compatible meshes.
     pub triangles: usize,
-    /// Whether the straight-line fallback path was used instead of the BSM.
-    pub linear_path: bool,
-    /// Whether the BSM's features were carried by its boundary
-    /// ([`ShapeModel::carried`]) because the plain BSM path folded the mesh.
-    pub carried_path: bool,
+    /// The intermediate curves the accepted map followed.
+    pub path: Intermediates,
 }
 
 /// Maps the triangulation `tri` of one side of `pairs` onto the other side (§5): returns the
@@ -151,26 +166,28 @@ pub fn composite_map(
         untangler: &untangler,
     };
     let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
-        Err(e) if e.is_input() && pairs.len() > 1 => {
+        Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
             log::debug!("composite map: BSM path failed ({e}), trying carried features");
             let carried = ShapeModel::carried(pairs, triangulated)?;
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
             let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
-            stats.carried_path = r.is_ok();
+            if r.is_ok() {
+                stats.path = Intermediates::Carried;
+            }
             r.map_err(|_| e)
         }
         r => r,
     };
     let current = match bsm {
         Ok(c) => c,
-        Err(e) if e.is_input() && opts.linear_fallback => {
+        Err(e) if e.is_input() && opts.last_resort == Intermediates::Straight => {
             log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             let linear = ShapeModel::linear(pairs, triangulated)?;
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
             let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
-            stats.linear_path = true;
+            stats.path = Intermediates::Straight;
             c
         }
         Err(e) => return Err(e),

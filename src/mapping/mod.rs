@@ -17,7 +17,7 @@ pub mod samples;
 pub mod shape_model;
 mod untangle;
 
-pub use composite::{composite_map, MappingOptions, MappingStats};
+pub use composite::{composite_map, Intermediates, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;
 pub(crate) use relax::relax_towards;
 pub use shape_model::ShapeModel;

@@ -90,12 +90,12 @@ fn a_strip_bent_into_a_u_maps_without_flips() {
     let pairs = bent_strip(20.0, 2, PI);
     let (m, stats) = map(&pairs, false).unwrap();
     assert_healthy(&m, &pairs);
-    assert!(stats.steps >= 4 && !stats.linear_path);
+    assert!(stats.steps >= 4 && stats.path != Intermediates::Straight);
     // a wide band curled by three quarters of a turn
     let pairs = bent_band(20.0, 6.0, 2, 1.5 * PI);
     let (m, stats) = map(&pairs, false).unwrap();
     assert_healthy(&m, &pairs);
-    assert!(!stats.linear_path);
+    assert!(stats.path != Intermediates::Straight);
 }
 
 #[test]
@@ -121,7 +121,7 @@ fn composing_avoids_the_folds_of_one_direct_map() {
     assert!(count_inverted(&tri.triangles, &direct) > 0);
     let (m, stats) = composite_map(&tri, &pairs, &tol, &MappingOptions::default()).unwrap();
     assert_healthy(&m, &pairs);
-    assert!(!stats.linear_path, "{stats:?}");
+    assert!(stats.path != Intermediates::Straight, "{stats:?}");
 }
 
 #[test]
@@ -134,7 +134,7 @@ fn a_folding_step_is_untangled_instead_of_abandoned() {
     let one = MappingOptions::default()
         .with_initial_steps(1)
         .with_min_step(0.75)
-        .with_linear_fallback(false);
+        .with_last_resort(Intermediates::Carried);
     let (m, stats) = composite_map(&tri, &pairs, &tol, &one).unwrap();
     assert_healthy(&m, &pairs);
     assert_eq!((stats.steps, stats.rejected_steps), (1, 0));
@@ -148,10 +148,14 @@ fn a_curled_strip_carries_its_features_with_the_boundary() {
     let pairs = bent_strip(20.0, 2, 1.5 * PI);
     let tol = Tolerances::new(diagonal(&pairs), 1.0);
     let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
-    let strict = MappingOptions::default().with_linear_fallback(false);
+    let strict = MappingOptions::default().with_last_resort(Intermediates::Carried);
     let (m, stats) = composite_map(&tri, &pairs, &tol, &strict).unwrap();
     assert_healthy(&m, &pairs);
-    assert!(stats.carried_path && !stats.linear_path, "{stats:?}");
+    assert_eq!(stats.path, Intermediates::Carried, "{stats:?}");
+    // The paper's curves alone cannot: the strategy stops there.
+    let paper = MappingOptions::default().with_last_resort(Intermediates::Bsm);
+    let e = composite_map(&tri, &pairs, &tol, &paper).unwrap_err();
+    assert!(e.is_input(), "{e}");
 }
 
 #[test]
