@@ -156,17 +156,10 @@ pub fn common_tolerances(source: &Drawing, target: &Drawing, density: f64) -> To
     Tolerances::new(d, if density > 0.0 { density } else { 1.0 })
 }
 
-/// Replaces the `<source>` / `<target>` placeholders ([`Side::placeholder`]) that stages
-/// without file names use. Each names its own side, whichever is triangulated.
+/// Names the drawings of an error from a stage without file names ([`Error::with_files`]).
+/// Each side names its own file, whichever is triangulated.
 fn name_files(e: Error, source: &Drawing, target: &Drawing) -> Error {
-    match e {
-        Error::Input(mut ie) => {
-            let (s, t) = (&source.file, &target.file);
-            ie.file = ie.file.replace("<source>", s).replace("<target>", t);
-            Error::Input(ie)
-        }
-        other => other,
-    }
+    e.with_files(&source.file, &target.file)
 }
 
 /// The common tolerances and the corresponded curve pairs of two drawings (§3): the first stage
@@ -241,16 +234,16 @@ mod tests {
 
     #[test]
     fn each_placeholder_names_its_own_file_whichever_side_is_triangulated() {
-        // Stages name the side they checked (`Side::placeholder`): "<target>" is the target
+        // Stages name the side they checked (`Side::drawing`): "<target>" is the target
         // even when the target is the side triangulated (before, it was swapped then).
         let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="10" height="10"/></svg>"#;
         let read = |name: &str| Drawing::from_str(name, svg, &ReadOptions::default()).unwrap();
         let (s, t) = (read("a.svg"), read("b.svg"));
         for (placeholder, file) in [(Side::Source, "a.svg"), (Side::Target, "b.svg")] {
-            let e = name_files(Error::input(placeholder.placeholder(), "x"), &s, &t);
+            let e = name_files(Error::input(placeholder.drawing(), "x"), &s, &t);
             assert_eq!(e.to_string(), format!("{file}: x"));
         }
-        let e = name_files(Error::input("<source> → <target>", "x"), &s, &t);
+        let e = name_files(Error::input(crate::Drawings::Pair, "x"), &s, &t);
         assert_eq!(e.to_string(), "a.svg → b.svg: x");
     }
 }

@@ -32,11 +32,98 @@ pub struct InputError {
     pub problem: String,
     /// How to fix it, if there is an obvious way.
     pub hint: Option<String>,
+    /// Which of the two drawings the problem is in, when it was found by a stage that knows no
+    /// file names (the triangulation of one side, the mapping, the interpolation): `file` then
+    /// holds a placeholder (`<source>`, …) until [`Error::with_files`] names the files.
+    /// `None` once named, or when `file` was known from the start.
+    pub drawings: Option<Drawings>,
     /// Every control curve the problem concerns, by id, the element first (two features that
     /// cross, the curves a failed mapping folds near). Not printed: it is for code that
     /// decides on the problem, as automatic mode does when it gives up a feature, instead of
     /// searching the message for ids.
     pub curves: Vec<String>,
+}
+
+/// Which of a morph's two drawings an input problem is in, for stages that work on geometry
+/// alone and know no file names; [`Error::with_files`] names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drawings {
+    /// The source drawing.
+    Source,
+    /// The target drawing.
+    Target,
+    /// Both, as one problem each has (`a.svg and b.svg`).
+    Both,
+    /// The pair, for a problem between them (`a.svg → b.svg`: no mapping from one to the
+    /// other).
+    Pair,
+}
+
+impl Drawings {
+    /// What the file reads as until it is named: `<source>`, `<target>`, `<source> and
+    /// <target>`, `<source> → <target>`.
+    pub fn placeholder(self) -> &'static str {
+        match self {
+            Drawings::Source => "<source>",
+            Drawings::Target => "<target>",
+            Drawings::Both => "<source> and <target>",
+            Drawings::Pair => "<source> → <target>",
+        }
+    }
+
+    /// The file name(s), given the source's and the target's.
+    pub fn name(self, source: &str, target: &str) -> String {
+        match self {
+            Drawings::Source => source.to_string(),
+            Drawings::Target => target.to_string(),
+            Drawings::Both => format!("{source} and {target}"),
+            Drawings::Pair => format!("{source} → {target}"),
+        }
+    }
+}
+
+/// Where an input problem is: a file by name, or one of the two drawings of a morph
+/// ([`Drawings`]) not yet named.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Where {
+    /// A file (or any place) by name.
+    File(String),
+    /// One of the drawings, named later.
+    Drawings(Drawings),
+}
+
+impl From<&str> for Where {
+    fn from(s: &str) -> Self {
+        Where::File(s.to_string())
+    }
+}
+
+impl From<String> for Where {
+    fn from(s: String) -> Self {
+        Where::File(s)
+    }
+}
+
+impl From<&String> for Where {
+    fn from(s: &String) -> Self {
+        Where::File(s.clone())
+    }
+}
+
+impl From<Drawings> for Where {
+    fn from(d: Drawings) -> Self {
+        Where::Drawings(d)
+    }
+}
+
+impl Where {
+    /// The file text and the unnamed drawings, as an [`InputError`] holds them.
+    fn split(self) -> (String, Option<Drawings>) {
+        match self {
+            Where::File(f) => (f, None),
+            Where::Drawings(d) => (d.placeholder().to_string(), Some(d)),
+        }
+    }
 }
 
 /// `s` safe to print on a terminal: control characters (and the other invisible formatting
@@ -92,10 +179,13 @@ impl fmt::Display for InputError {
 }
 
 impl Error {
-    /// An input error in `file` with no particular element.
-    pub fn input(file: impl Into<String>, problem: impl Into<String>) -> Self {
+    /// An input error in `file` (a name, or one of the [`Drawings`]) with no particular
+    /// element.
+    pub fn input(file: impl Into<Where>, problem: impl Into<String>) -> Self {
+        let (file, drawings) = file.into().split();
         Error::Input(InputError {
-            file: file.into(),
+            file,
+            drawings,
             element: None,
             problem: problem.into(),
             hint: None,
@@ -105,13 +195,15 @@ impl Error {
 
     /// An input error in `file` at the element with id `element`.
     pub fn at(
-        file: impl Into<String>,
+        file: impl Into<Where>,
         element: impl Into<String>,
         problem: impl Into<String>,
     ) -> Self {
         let element: String = element.into();
+        let (file, drawings) = file.into().split();
         Error::Input(InputError {
-            file: file.into(),
+            file,
+            drawings,
             curves: vec![element.clone()],
             element: Some(element),
             problem: problem.into(),
@@ -150,11 +242,22 @@ impl Error {
         }
     }
 
-    /// Replaces the file of an input error; stages that do not know the file name use a
-    /// placeholder that the caller fills in with this.
-    pub fn in_file(mut self, file: impl Into<String>) -> Self {
+    /// Replaces the file of an input error (a name, or one of the [`Drawings`]).
+    pub fn in_file(mut self, file: impl Into<Where>) -> Self {
         if let Error::Input(e) = &mut self {
-            e.file = file.into();
+            (e.file, e.drawings) = file.into().split();
+        }
+        self
+    }
+
+    /// Names the drawings of an input error found by a stage that knew no file names
+    /// ([`InputError::drawings`]), given the source's and the target's; an error with its
+    /// file known is unchanged.
+    pub fn with_files(mut self, source: &str, target: &str) -> Self {
+        if let Error::Input(e) = &mut self {
+            if let Some(d) = e.drawings.take() {
+                e.file = d.name(source, target);
+            }
         }
         self
     }
@@ -194,5 +297,26 @@ mod tests {
             "a.svg: crosses 'f\\u{7}' (hint: rename '\\u{1b}')"
         );
         assert_eq!(printable_line(&printable_line("a\u{1b}")), "a\\u{1b}");
+    }
+
+    #[test]
+    fn drawings_read_as_placeholders_until_named() {
+        let e = Error::at(Drawings::Pair, "feature-eye", "folds");
+        assert_eq!(
+            e.to_string(),
+            "<source> → <target>: element 'feature-eye': folds"
+        );
+        let named = e.with_files("a.svg", "b.svg");
+        assert_eq!(
+            named.to_string(),
+            "a.svg → b.svg: element 'feature-eye': folds"
+        );
+        // Named once: a second naming changes nothing, nor does naming a known file.
+        assert_eq!(named.clone().with_files("x", "y"), named);
+        let known = Error::input("c.svg", "x");
+        assert_eq!(known.clone().with_files("a.svg", "b.svg"), known);
+        // A file literally called "<source>" is a file, not a placeholder.
+        let odd = Error::input("<source>", "x").with_files("a.svg", "b.svg");
+        assert_eq!(odd.to_string(), "<source>: x");
     }
 }

@@ -29,12 +29,12 @@ impl Side {
         }
     }
 
-    /// The placeholder file name of this side in messages of stages that do not know the
-    /// files (`<source>`, `<target>`; see [`crate::Error::in_file`]).
-    pub fn placeholder(self) -> &'static str {
+    /// This side as the drawing an error of a stage that knows no file names is in
+    /// ([`crate::Error::with_files`] names it).
+    pub fn drawing(self) -> crate::error::Drawings {
         match self {
-            Side::Source => "<source>",
-            Side::Target => "<target>",
+            Side::Source => crate::error::Drawings::Source,
+            Side::Target => crate::error::Drawings::Target,
         }
     }
 }

@@ -24,6 +24,7 @@ mod salient;
 mod tests;
 
 use crate::drawing::{ControlCurve, Controls};
+use crate::error::Drawings;
 use crate::geometry::Point;
 use crate::mesh::CurveKind;
 use crate::tolerance::{Tolerances, MAX_COORDINATE};
@@ -154,9 +155,9 @@ impl CorrespondenceOptions {
 }
 
 /// Placeholder file names: stages below [`correspond_all`] do not know the files.
-const SRC: &str = "<source>";
-const TGT: &str = "<target>";
-const BOTH: &str = "<source> and <target>";
+const SRC: Drawings = Drawings::Source;
+const TGT: Drawings = Drawings::Target;
+const BOTH: Drawings = Drawings::Both;
 
 /// Vertex correspondence for every curve of a pair of drawings (§3): the boundary first, then
 /// the features in name order.
@@ -427,15 +428,9 @@ fn check_boundaries(
     })
 }
 
-/// Replaces the placeholder file names of an input error with the real ones.
+/// Names the drawings of an input error ([`Error::with_files`]).
 fn name_files(err: Error, src_file: &str, tgt_file: &str) -> Error {
-    match err {
-        Error::Input(mut e) => {
-            e.file = e.file.replace(SRC, src_file).replace(TGT, tgt_file);
-            Error::Input(e)
-        }
-        other => other,
-    }
+    err.with_files(src_file, tgt_file)
 }
 
 /// Vertex correspondence for one curve pair (§3, after \[15\]).

@@ -151,7 +151,7 @@ pub(crate) fn distribute(
 
 fn coincident() -> Error {
     Error::input(
-        "<source> and <target>",
+        crate::error::Drawings::Both,
         "corresponding parts of the curve differ so much in length that vertices coincide",
     )
     .with_hint("add anchors so that matching parts of the curves correspond")
@@ -278,7 +278,7 @@ fn split_long_edges(
         let parts = (ds.max(dt) / max_edge).ceil();
         if !parts.is_finite() || out.len() as f64 + parts > MAX_VERTICES as f64 {
             return Err(Error::input(
-                "<source> and <target>",
+                crate::error::Drawings::Both,
                 format!("a curve would need more than {MAX_VERTICES} vertices at this density"),
             )
             .with_hint("lower the density"));

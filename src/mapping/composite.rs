@@ -322,13 +322,13 @@ fn failure(
 ) -> Error {
     match crossing_names(model, pairs, t, curves) {
         Some((names, ids)) => Error::input(
-            "<source> → <target>",
+            crate::error::Drawings::Pair,
             format!("no flip-free mapping{why}: at t = {t:.3} {names}; {FIG16}"),
         )
         .with_hint(HINT)
         .concerning(ids),
         None => Error::input(
-            "<source> → <target>",
+            crate::error::Drawings::Pair,
             format!("no flip-free mapping{why} (t = {t:.3}); {FIG16}"),
         )
         .with_hint(HINT),
@@ -414,7 +414,7 @@ fn flip_report(
     near.sort_unstable();
     let names: Vec<&str> = near.iter().take(4).map(|&i| pairs[i].id.as_str()).collect();
     Error::input(
-        "<source> → <target>",
+        crate::error::Drawings::Pair,
         format!(
             "no flip-free mapping (t = {t:.3}): the mesh folds near {} when following the change of \
              the curves' layout (too large a relative rotation or deformation between neighbouring \

@@ -54,7 +54,7 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
     }
     if polygon_area(p) <= 0.0 || polygon_area(q) <= 0.0 {
         return Err(Error::input(
-            "<source> → <target>",
+            crate::error::Drawings::Pair,
             format!("{}: an outline is not counter-clockwise", outline.id),
         ));
     }
@@ -77,7 +77,7 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
     let budget = VERTEX_BUDGET * (a.points.len() + b.points.len());
     if disc.len() > budget {
         return Err(Error::input(
-            "<source> → <target>",
+            crate::error::Drawings::Pair,
             format!(
                 "{}: the overlay would have {} vertices, more than {budget}",
                 outline.id,
@@ -114,7 +114,7 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
     let folded = count_inverted(&m.triangles, &m.source) + count_inverted(&m.triangles, &m.target);
     if folded > 0 {
         return Err(Error::input(
-            "<source> → <target>",
+            crate::error::Drawings::Pair,
             format!(
                 "{}: {folded} triangles of the overlaid triangulation are degenerate",
                 outline.id

@@ -102,7 +102,7 @@ fn intrinsic(points: &[Point], closed: bool) -> Option<(Vec<f64>, Vec<f64>)> {
 
 impl CurveModel {
     fn new(id: &str, closed: bool, from: &[Point], to: &[Point]) -> Result<Self> {
-        let degenerate = || Error::at("<source> → <target>", id, "has a zero-length edge");
+        let degenerate = || Error::at(crate::error::Drawings::Pair, id, "has a zero-length edge");
         if from.len() != to.len() || from.len() < 2 {
             return Err(Error::internal(format!(
                 "shape model: curve '{id}' has mismatched vertex lists"

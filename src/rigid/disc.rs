@@ -67,7 +67,7 @@ pub(crate) struct LocalTransforms {
 pub(crate) fn validate_points(source: &[Point], target: &[Point]) -> Result<()> {
     if source.len() != target.len() {
         return Err(Error::input(
-            "<target>",
+            crate::error::Drawings::Target,
             format!(
                 "the target has {} points but the source has {}; compatible meshes need one \
                  target point per source point",
@@ -76,7 +76,10 @@ pub(crate) fn validate_points(source: &[Point], target: &[Point]) -> Result<()> 
             ),
         ));
     }
-    for (name, pts) in [("<source>", source), ("<target>", target)] {
+    for (name, pts) in [
+        (crate::error::Drawings::Source, source),
+        (crate::error::Drawings::Target, target),
+    ] {
         if let Some(i) = pts.iter().position(|p| !p.is_finite()) {
             return Err(Error::input(
                 name,
@@ -99,7 +102,7 @@ impl LocalTransforms {
         let n = source.len();
         if discs.len() != n {
             return Err(Error::input(
-                "<source>",
+                crate::error::Drawings::Source,
                 format!("{} discs given for {} points", discs.len(), n),
             ));
         }
@@ -108,7 +111,7 @@ impl LocalTransforms {
             for &j in d {
                 if j as usize >= n || j as usize == i {
                     return Err(Error::input(
-                        "<source>",
+                        crate::error::Drawings::Source,
                         format!(
                             "the disc of point {i} refers to point {j}, which is not a neighbour"
                         ),
@@ -147,13 +150,13 @@ impl LocalTransforms {
             let (ld, le) = (d.length(), e.length());
             if ld <= min_src {
                 return Err(Error::input(
-                    "<source>",
+                    crate::error::Drawings::Source,
                     format!("points {i} and {j} coincide (a disc edge of zero length)"),
                 ));
             }
             if le <= min_tgt {
                 return Err(Error::input(
-                    "<target>",
+                    crate::error::Drawings::Target,
                     format!("points {i} and {j} coincide (a disc edge of zero length)"),
                 ));
             }

@@ -118,7 +118,7 @@ fn check_triangles(triangles: &[[u32; 3]], n: usize) -> Result<()> {
     for (f, t) in triangles.iter().enumerate() {
         if t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
             return Err(Error::input(
-                "<source>",
+                crate::error::Drawings::Source,
                 format!("triangle {f} has invalid vertex indices {t:?} ({n} vertices)"),
             ));
         }
@@ -130,7 +130,7 @@ impl Interpolator {
     /// Sets up `method` for compatible triangle meshes (one connectivity `triangles`,
     /// counter-clockwise in the source). The disc method uses one-ring discs (§4.1).
     ///
-    /// Errors (input errors on `"<source>"`/`"<target>"`): mismatched lengths, non-finite
+    /// Errors (input errors on `crate::error::Drawings::Source`/`crate::error::Drawings::Target`): mismatched lengths, non-finite
     /// coordinates, invalid triangle indices, coincident neighbouring points, and for the triangle
     /// method zero-area source triangles.
     pub fn new(

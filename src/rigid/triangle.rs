@@ -70,14 +70,14 @@ impl TriangleRigid {
             let [i0, i1, i2] = tri.map(|v| v as usize);
             if i0 >= n || i1 >= n || i2 >= n || i0 == i1 || i1 == i2 || i0 == i2 {
                 return Err(Error::input(
-                    "<source>",
+                    crate::error::Drawings::Source,
                     format!("triangle {f} has invalid vertex indices {tri:?}"),
                 ));
             }
             let Some(pinv) = inverse_columns(source[i1] - source[i0], source[i2] - source[i0])
             else {
                 return Err(Error::input(
-                    "<source>",
+                    crate::error::Drawings::Source,
                     format!("triangle {f} is degenerate (zero area)"),
                 ));
             };

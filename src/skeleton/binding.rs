@@ -150,7 +150,7 @@ pub(crate) fn joint_weights(
 fn handle_vertices(skeleton: &Skeleton, source: &[Point]) -> Result<Vec<u32>> {
     if skeleton.joints.len() > source.len() {
         return Err(Error::input(
-            "<source>",
+            crate::error::Drawings::Source,
             "the skeleton has more joints than the mesh has vertices; use a higher --density",
         ));
     }

@@ -50,7 +50,7 @@ pub fn triangulate(
     tol: &Tolerances,
     triangulated: Side,
 ) -> Result<Triangulation> {
-    let file = triangulated.placeholder();
+    let file = triangulated.drawing();
     let side = |p| side_of(p, triangulated);
     validate_curves(pairs, tol, triangulated)?;
     let curves: Vec<(&[Point], bool)> = pairs.iter().map(|p| (side(p), p.closed)).collect();
@@ -95,7 +95,7 @@ pub fn triangulate(
 /// Checks the curves of one side: one closed, simple, counter-clockwise boundary first; features
 /// inside it; no crossings, touchings or coincident vertices.
 pub(crate) fn validate_curves(pairs: &[CurvePair], tol: &Tolerances, checked: Side) -> Result<()> {
-    let file = checked.placeholder();
+    let file = checked.drawing();
     let side = |p| side_of(p, checked);
     let Some(boundary) = pairs.first().filter(|p| p.kind == CurveKind::Boundary) else {
         return Err(Error::input(file, "no boundary curve"));
