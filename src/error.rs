@@ -41,7 +41,8 @@ pub struct InputError {
     /// cross, the curves a failed mapping folds near). Not printed: it is for code that
     /// decides on the problem, as automatic mode does when it gives up a feature, instead of
     /// searching the message for ids.
-    pub curves: Vec<String>,
+    /// (A boxed slice, not a `Vec`: errors travel in every `Result`, so they stay small.)
+    pub curves: Box<[String]>,
 }
 
 /// Which of a morph's two drawings an input problem is in, for stages that work on geometry
@@ -189,7 +190,7 @@ impl Error {
             element: None,
             problem: problem.into(),
             hint: None,
-            curves: Vec::new(),
+            curves: Box::default(),
         })
     }
 
@@ -204,7 +205,7 @@ impl Error {
         Error::Input(InputError {
             file,
             drawings,
-            curves: vec![element.clone()],
+            curves: Box::new([element.clone()]),
             element: Some(element),
             problem: problem.into(),
             hint: None,
@@ -223,12 +224,14 @@ impl Error {
     /// effect on internal errors).
     pub fn concerning<S: Into<String>>(mut self, ids: impl IntoIterator<Item = S>) -> Self {
         if let Error::Input(e) = &mut self {
+            let mut curves = std::mem::take(&mut e.curves).into_vec();
             for id in ids {
                 let id = id.into();
-                if !e.curves.contains(&id) {
-                    e.curves.push(id);
+                if !curves.contains(&id) {
+                    curves.push(id);
                 }
             }
+            e.curves = curves.into_boxed_slice();
         }
         self
     }
