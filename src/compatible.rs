@@ -21,7 +21,10 @@ pub struct MorphOptions {
     /// The side that is triangulated and mapped onto the other (Fig. 12 triangulates the
     /// target). Default: the source.
     pub triangulated: Side,
-    /// Vertex density multiplier for correspondence and refinement. Default: 1.0 (0 means 1.0).
+    /// Vertex density multiplier for correspondence and refinement. Default: 0, the density
+    /// the source drawing was read with ([`crate::drawing::ReadOptions::density`], kept in
+    /// [`Tolerances::density`]), so that one setting reads and triangulates; a positive number
+    /// overrides it.
     pub density: f64,
     /// Vertex correspondence options. Default: [`CorrespondenceOptions::default`].
     pub correspondence: CorrespondenceOptions,
@@ -150,10 +153,16 @@ fn relax_mapped(m: &mut CompatibleMeshes, triangulated: Side) {
     crate::mapping::relax_towards(rest, mapped, &m.triangles, &held);
 }
 
-/// Tolerances common to both drawings: relative to the larger one.
+/// Tolerances common to both drawings: relative to the larger one, at `density` (not a
+/// positive number: the density the source was read with, see [`MorphOptions::density`]).
 pub fn common_tolerances(source: &Drawing, target: &Drawing, density: f64) -> Tolerances {
     let d = source.tolerances.diagonal.max(target.tolerances.diagonal);
-    Tolerances::new(d, if density > 0.0 { density } else { 1.0 })
+    let density = if density > 0.0 && density.is_finite() {
+        density
+    } else {
+        source.tolerances.density
+    };
+    Tolerances::new(d, density)
 }
 
 /// Names the drawings of an error from a stage without file names ([`Error::with_files`]).
@@ -195,7 +204,7 @@ fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) 
     let v = crate::budget::mesh_vertices(&side(source), &side(target), &tol);
     let files = format!("{} → {}", source.file, target.file);
     // The source drawing's limits (both come from the same options in the CLI).
-    crate::budget::check(v, opts.density, &files, &source.policy.limits)
+    crate::budget::check(v, tol.density, &files, &source.policy.limits)
 }
 
 /// Builds compatible triangulations of two drawings (§3, §5).
@@ -245,5 +254,29 @@ mod tests {
         }
         let e = name_files(Error::input(crate::Drawings::Pair, "x"), &s, &t);
         assert_eq!(e.to_string(), "a.svg → b.svg: x");
+    }
+
+    #[test]
+    fn the_reading_density_is_the_triangulations_unless_set() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="10" height="10"/></svg>"#;
+        let read = |density: f64| {
+            let opts = ReadOptions {
+                density,
+                ..ReadOptions::default()
+            };
+            Drawing::from_str("a.svg", svg, &opts).unwrap()
+        };
+        let (s, t) = (read(2.0), read(2.0));
+        let built = |density: f64| {
+            let opts = MorphOptions {
+                density,
+                ..MorphOptions::default()
+            };
+            build(&s, &t, &opts).unwrap()
+        };
+        let default = built(0.0);
+        assert_eq!(default.tolerances.density, 2.0);
+        assert_eq!(default.meshes.source.len(), built(2.0).meshes.source.len());
+        assert!(built(1.0).meshes.source.len() < default.meshes.source.len());
     }
 }

@@ -1,13 +1,14 @@
 //! What a frame of a morph is, independent of any output format: the frame model every exporter
 //! reads.
 //!
-//! A [`Frame`] at `t` is the mesh at `t` (§4.1) and a stack of [`FrameLayer`]s, bottom first:
+//! A [`Frame`] at `t` is a stack of [`FrameLayer`]s drawn from the mesh at `t` (§4.1), bottom first:
 //! parts of the artwork that cross-dissolve (the warped source and target of the part, weighed by
 //! [`dissolve`], end of §3), and paths that morph as one shape (automatic mode's matched paths,
 //! [`crate::morphing`], with their paints already mixed), interleaved in the inputs' paint order.
 //! The SVG and PNG frames, the animated SVG, GIF, APNG, the HTML preview and Lottie are all written
 //! from frames ([`crate::export::Morph::frame_at`] and [`crate::export::Morph::keyframe_at`]);
-//! when they are shown is the [`crate::render::Timeline`]'s business.
+//! when they are shown is the [`crate::render::Timeline`]'s business. The JSON output is the
+//! mesh itself ([`crate::export::Morph::vertex_frames`]), not a drawing, so it needs no frame.
 
 use crate::artwork::Scene;
 
@@ -37,7 +38,7 @@ impl FrameLayer {
     }
 }
 
-/// A frame of a morph at `t`: the mesh and the layers drawn from it, bottom first.
+/// A frame of a morph at `t`: the layers drawn from the mesh at `t`, bottom first.
 #[derive(Debug, Clone)]
 pub struct Frame {
     /// The morph's progress, in [0, 1] ([`crate::rigid::clamp_time`]).
