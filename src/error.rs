@@ -43,6 +43,28 @@ pub struct InputError {
     /// searching the message for ids.
     /// (A boxed slice, not a `Vec`: errors travel in every `Result`, so they stay small.)
     pub curves: Box<[String]>,
+    /// What kind of problem it is, for code that decides on it ([`ProblemKind`]).
+    pub kind: ProblemKind,
+}
+
+/// The kind of an input problem, so that code deciding on a failure (automatic mode giving up
+/// a feature, a library user's own retry) reads a value, not the message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum ProblemKind {
+    /// Anything else: a file that cannot be read, a limit, a bad option.
+    #[default]
+    Other,
+    /// The named element is unusable in itself: a control curve that crosses itself, is too
+    /// short or open where it must be closed, a skeleton bone of zero length, an artwork
+    /// element that cannot be drawn (every error made with [`Error::at`] until told otherwise).
+    Element,
+    /// Control curves cross or touch each other or the boundary (§3: features must lie inside
+    /// the boundary, apart): [`InputError::curves`] holds the element and the curve it meets.
+    Crossing,
+    /// No flip-free mapping from one drawing to the other (§5, the paper's Fig. 16): the mesh
+    /// folds near the curves in [`InputError::curves`].
+    NoFlipFreeMapping,
 }
 
 /// Which of a morph's two drawings an input problem is in, for stages that work on geometry
@@ -181,7 +203,7 @@ impl fmt::Display for InputError {
 
 impl Error {
     /// An input error in `file` (a name, or one of the [`Drawings`]) with no particular
-    /// element.
+    /// element, of kind [`ProblemKind::Other`].
     pub fn input(file: impl Into<Where>, problem: impl Into<String>) -> Self {
         let (file, drawings) = file.into().split();
         Error::Input(InputError {
@@ -191,10 +213,12 @@ impl Error {
             problem: problem.into(),
             hint: None,
             curves: Box::default(),
+            kind: ProblemKind::Other,
         })
     }
 
-    /// An input error in `file` at the element with id `element`.
+    /// An input error in `file` at the element with id `element`, of kind
+    /// [`ProblemKind::Element`] (change it with [`Error::of_kind`]).
     pub fn at(
         file: impl Into<Where>,
         element: impl Into<String>,
@@ -209,6 +233,7 @@ impl Error {
             element: Some(element),
             problem: problem.into(),
             hint: None,
+            kind: ProblemKind::Element,
         })
     }
 
@@ -234,6 +259,22 @@ impl Error {
             e.curves = curves.into_boxed_slice();
         }
         self
+    }
+
+    /// Sets the kind of an input error ([`ProblemKind`]; no effect on internal errors).
+    pub fn of_kind(mut self, kind: ProblemKind) -> Self {
+        if let Error::Input(e) = &mut self {
+            e.kind = kind;
+        }
+        self
+    }
+
+    /// The kind of an input error ([`InputError::kind`]); `None` for internal errors.
+    pub fn kind(&self) -> Option<ProblemKind> {
+        match self {
+            Error::Input(e) => Some(e.kind),
+            Error::Internal(_) => None,
+        }
     }
 
     /// The control curves an input error concerns ([`InputError::curves`]); none for internal

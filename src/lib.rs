@@ -55,7 +55,7 @@ pub mod skeleton;
 pub mod tolerance;
 pub mod triangulation;
 
-pub use error::{Drawings, Error, InputError, Result};
+pub use error::{Drawings, Error, InputError, ProblemKind, Result};
 pub use geometry::Point;
 pub use mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
 pub use morpher::Morpher;

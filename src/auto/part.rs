@@ -21,7 +21,7 @@
 use crate::compatible::{build, Compatible, MorphOptions};
 use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
-use crate::error::{Error, Result};
+use crate::error::{Error, ProblemKind, Result};
 use crate::geometry::Point;
 use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
 use crate::tolerance::Tolerances;
@@ -318,8 +318,15 @@ pub(crate) fn build_part(
         if holes.is_empty() {
             break;
         }
-        // Give up the hole the failure concerns (the last of them), else the smallest.
-        let curves = failure.as_ref().map_or(&[][..], Error::curves);
+        // Give up the hole the failure concerns (the last of them): one that crosses, is
+        // unusable itself, or that the mapping folds near. Else the smallest.
+        let curves = match failure.as_ref().and_then(|e| e.kind().map(|k| (e, k))) {
+            Some((
+                e,
+                ProblemKind::Element | ProblemKind::Crossing | ProblemKind::NoFlipFreeMapping,
+            )) => e.curves(),
+            _ => &[],
+        };
         let named = (0..holes.len())
             .rev()
             .find(|k| curves.contains(&format!("feature-hole-{k}")));

@@ -591,7 +591,8 @@ pub(crate) fn validate_layout(
                 format!("{what} '{}' near ({:.3}, {:.3})", first.id, p.x, p.y),
             )
             .with_hint("features must lie inside the boundary and must not touch each other")
-            .concerning([first.id.clone()]));
+            .concerning([first.id.clone()])
+            .of_kind(crate::error::ProblemKind::Crossing));
         }
     }
     Ok(())

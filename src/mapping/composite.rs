@@ -22,6 +22,7 @@ use super::harmonic::Harmonic;
 use super::shape_model::ShapeModel;
 use super::untangle::Untangler;
 use crate::correspondence::CurvePair;
+use crate::error::ProblemKind;
 use crate::geometry::Point;
 use crate::mesh::{count_inverted, CompatibleMeshes, Side};
 use crate::tolerance::Tolerances;
@@ -326,12 +327,14 @@ fn failure(
             format!("no flip-free mapping{why}: at t = {t:.3} {names}; {FIG16}"),
         )
         .with_hint(HINT)
-        .concerning(ids),
+        .concerning(ids)
+        .of_kind(ProblemKind::NoFlipFreeMapping),
         None => Error::input(
             crate::error::Drawings::Pair,
             format!("no flip-free mapping{why} (t = {t:.3}); {FIG16}"),
         )
-        .with_hint(HINT),
+        .with_hint(HINT)
+        .of_kind(ProblemKind::NoFlipFreeMapping),
     }
 }
 
@@ -424,6 +427,7 @@ fn flip_report(
     )
     .with_hint(HINT)
     .concerning(names.iter().copied())
+    .of_kind(ProblemKind::NoFlipFreeMapping)
 }
 
 #[cfg(test)]

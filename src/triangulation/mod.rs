@@ -11,6 +11,7 @@ mod cdt;
 pub(crate) mod validate;
 
 use crate::correspondence::CurvePair;
+use crate::error::ProblemKind;
 use crate::geometry::{point_in_polygon, polygon_area, Point};
 use crate::mesh::{CurveKind, MeshCurve, Side};
 use crate::tolerance::Tolerances;
@@ -63,7 +64,8 @@ pub fn triangulate(
             file,
             pairs[c].id.clone(),
             "crosses another curve (constraint edge could not be added)",
-        ),
+        )
+        .of_kind(ProblemKind::Crossing),
         cdt::CdtError::Other(msg) => Error::internal(msg),
         cdt::CdtError::Coordinate(c) => {
             Error::at(file, pairs[c].id.clone(), "has a coordinate out of range")
@@ -148,8 +150,12 @@ pub(crate) fn validate_curves(pairs: &[CurvePair], tol: &Tolerances, checked: Si
             )
         } else if a.kind == CurveKind::Boundary {
             Error::at(file, b.id.clone(), "crosses the boundary")
+                .concerning([a.id.clone()])
+                .of_kind(ProblemKind::Crossing)
         } else {
-            Error::at(file, b.id.clone(), format!("crosses {}", a.id)).concerning([a.id.clone()])
+            Error::at(file, b.id.clone(), format!("crosses {}", a.id))
+                .concerning([a.id.clone()])
+                .of_kind(ProblemKind::Crossing)
         };
         return Err(err);
     }

@@ -52,6 +52,22 @@ fn crossing_features_are_both_in_the_error_as_data() {
     let mut curves = e.curves().to_vec();
     curves.sort();
     assert_eq!(curves, ["feature-a", "feature-b"], "{e}");
+    assert_eq!(e.kind(), Some(crmorph::ProblemKind::Crossing), "{e}");
+    // Other problems are of other kinds: a missing file is neither a curve nor a crossing.
+    let missing = Drawing::open(
+        &fixtures().join("errors/no-such-file.svg"),
+        &ReadOptions::default(),
+    );
+    assert_eq!(
+        missing.unwrap_err().kind(),
+        Some(crmorph::ProblemKind::Other)
+    );
+    // A curve unusable in itself.
+    let own = Drawing::open(
+        &fixtures().join("errors/self-crossing-boundary.svg"),
+        &ReadOptions::default(),
+    );
+    assert_eq!(own.unwrap_err().kind(), Some(crmorph::ProblemKind::Element));
 }
 
 #[test]

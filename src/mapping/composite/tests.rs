@@ -156,6 +156,7 @@ fn a_curled_strip_carries_its_features_with_the_boundary() {
     let paper = MappingOptions::default().with_last_resort(Intermediates::Bsm);
     let e = composite_map(&tri, &pairs, &tol, &paper).unwrap_err();
     assert!(e.is_input(), "{e}");
+    assert_eq!(e.kind(), Some(crate::ProblemKind::NoFlipFreeMapping), "{e}");
 }
 
 #[test]
