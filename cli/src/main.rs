@@ -58,7 +58,8 @@ pub(crate) struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Morph SRC into TGT; the output's extension picks the format: .svg (animated), .gif, .png
-    /// (APNG), .html (preview), .json (every frame's mesh).
+    /// (APNG), .html (preview), .lottie.json (Lottie), .lottie (dotLottie), .json (every
+    /// frame's mesh).
     Morph(MorphArgs),
     /// One frame at time T: .png or .svg (the rendered frame) or .json (the mesh at T).
     Frame(FrameArgs),

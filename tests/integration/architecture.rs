@@ -15,10 +15,10 @@ const LAYERS: &[&str] = &[
     "base64",
     "number",
     "mesh",
-    "correspondence",
     "input",
     "budget",
     "drawing",
+    "correspondence",
     "artwork",
     "color",
     "rigid",
@@ -63,9 +63,34 @@ fn files_of(src: &Path, name: &str) -> Vec<PathBuf> {
     out
 }
 
-/// The modules `text` uses (`crate::NAME`), comments and its `#[cfg(test)]` part left out.
+/// `text` without its `#[cfg(test)]` items: an item that ends on its first line
+/// (`mod tests;`), or one whose braces close further down (`mod tests { … }`).
+fn without_tests(text: &str) -> String {
+    let mut out = String::new();
+    let mut lines = text.lines();
+    while let Some(line) = lines.next() {
+        if line.trim_start().starts_with("#[cfg(test)]") {
+            // Skip the item: up to the line that ends it, counting braces.
+            let mut depth = 0i64;
+            let mut opened = false;
+            for item in lines.by_ref() {
+                depth += item.matches('{').count() as i64 - item.matches('}').count() as i64;
+                opened |= item.contains('{');
+                if (opened && depth <= 0) || (!opened && item.trim_end().ends_with(';')) {
+                    break;
+                }
+            }
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
+}
+
+/// The modules `text` uses (`crate::NAME`), comments and its `#[cfg(test)]` items left out.
 fn uses(text: &str) -> BTreeSet<String> {
-    let code = text.split("#[cfg(test)]").next().unwrap_or("");
+    let code = without_tests(text);
     let mut out = BTreeSet::new();
     for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
         for (i, _) in line.match_indices("crate::") {
@@ -128,4 +153,13 @@ fn a_use_is_found_and_comments_and_tests_are_not() {
     let text = "use crate::mesh::Side;\n/// [`crate::export::Morph`]\nfn f() { crate::render::fixed(1.0, 2); }\n#[cfg(test)]\nmod tests { use crate::morpher::Morpher; }";
     let found: Vec<String> = uses(text).into_iter().collect();
     assert_eq!(found, ["mesh", "render"]);
+}
+
+#[test]
+fn code_after_a_test_module_declared_early_is_read() {
+    // `#[cfg(test)] mod tests;` near the top hides nothing below it; a test module's body is
+    // left out wherever it stands.
+    let text = "#[cfg(test)]\nmod tests;\nuse crate::drawing::Controls;\n#[cfg(test)]\nmod more {\n    use crate::auto::X;\n    fn f() { if true { crate::export::g(); } }\n}\nfn h() { crate::rigid::k(); }\n";
+    let found: Vec<String> = uses(text).into_iter().collect();
+    assert_eq!(found, ["drawing", "rigid"]);
 }
