@@ -27,6 +27,29 @@
 //!
 //! [`compatible`] runs stages 1–4 for a pair of drawings; [`mesh`] holds the result and its
 //! [`mesh::sanity_check`]; [`quality`] measures frames.
+//!
+//! ## Morphing two SVGs
+//!
+//! [`Morpher`] is the front door: two drawings and every choice about their morph, built into
+//! an [`export::Morph`] that writes every output (animated SVG, frames, GIF, APNG, HTML, JSON,
+//! Lottie). Two plain SVG strings, no markup, into an animated SVG:
+//!
+//! ```
+//! use crmorph::export::Timeline;
+//! use crmorph::Morpher;
+//!
+//! let square = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+//!   <rect x="20" y="20" width="60" height="60" fill="teal"/></svg>"#;
+//! let circle = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+//!   <circle cx="50" cy="50" r="32" fill="orange"/></svg>"#;
+//! let morph = Morpher::from_svg(("square.svg", square), ("circle.svg", circle))?.build()?;
+//! let svg = morph.animated_svg(&Timeline::default())?;
+//! assert!(svg.starts_with("<svg") && svg.contains("<animate"));
+//! # Ok::<(), crmorph::Error>(())
+//! ```
+//!
+//! A frame at t, whatever it is written as, is [`frame::Frame`] ([`export::Morph::frame_at`]);
+//! input errors name the file, the element and the problem, with a [`ProblemKind`].
 
 pub mod artwork;
 pub mod auto;
