@@ -39,6 +39,9 @@ pub struct PointLocator<'a> {
     points: &'a [Point],
     triangles: &'a [[u32; 3]],
     origin: Point,
+    /// The grid's far corner: the triangles' largest coordinates, or the last cells' far
+    /// sides if they reach further.
+    far: Point,
     cell: f64,
     nx: usize,
     ny: usize,
@@ -97,6 +100,7 @@ impl<'a> PointLocator<'a> {
             points,
             triangles,
             origin: lo,
+            far: hi.max(lo + Point::new(nx as f64, ny as f64) * cell),
             cell,
             nx,
             ny,
@@ -178,25 +182,29 @@ impl<'a> PointLocator<'a> {
                     }
                 }
             }
-            // Stop when every cell beyond ring r is farther than the best triangle: the
-            // unsearched cells lie beyond the sides of the ring's rectangle that are not the
-            // grid's own edges (a point outside the grid is far from all of them at once).
+            // Stop when every cell beyond ring r is farther than the best triangle. An
+            // unsearched triangle's box lies in the grid outside the ring's rectangle, so it is
+            // at least as far as the nearest of the four strips of the grid beyond the ring's
+            // sides (the grid's own edges have none): for a point far outside a small grid,
+            // that is far more than the gap to the ring's side alone.
             if let Some((d, _)) = best {
-                let (o, c) = (self.origin, self.cell);
+                let (o, c, far) = (self.origin, self.cell, self.far);
+                let (left, right) = (o.x + x0 as f64 * c, o.x + (x1 + 1) as f64 * c);
+                let (low, high) = (o.y + y0 as f64 * c, o.y + (y1 + 1) as f64 * c);
                 let mut beyond = f64::INFINITY;
                 if x0 > 0 {
-                    beyond = beyond.min(p.x - (o.x + x0 as f64 * c));
+                    beyond = beyond.min(box_distance(p, o, Point::new(left, far.y)));
                 }
                 if x1 + 1 < self.nx {
-                    beyond = beyond.min(o.x + (x1 + 1) as f64 * c - p.x);
+                    beyond = beyond.min(box_distance(p, Point::new(right, o.y), far));
                 }
                 if y0 > 0 {
-                    beyond = beyond.min(p.y - (o.y + y0 as f64 * c));
+                    beyond = beyond.min(box_distance(p, o, Point::new(far.x, low)));
                 }
                 if y1 + 1 < self.ny {
-                    beyond = beyond.min(o.y + (y1 + 1) as f64 * c - p.y);
+                    beyond = beyond.min(box_distance(p, Point::new(o.x, high), far));
                 }
-                if d < beyond.max(0.0) || beyond == f64::INFINITY {
+                if d < beyond || beyond == f64::INFINITY {
                     break;
                 }
             }
@@ -292,6 +300,13 @@ impl<'a> Locator<'a> {
         part.and_then(|k| parts.each[k as usize].as_ref())
             .unwrap_or(&self.whole)
     }
+}
+
+/// The distance from `p` to the box with corners `lo` and `hi` (0 inside it).
+fn box_distance(p: Point, lo: Point, hi: Point) -> f64 {
+    let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
+    let dy = (lo.y - p.y).max(p.y - hi.y).max(0.0);
+    dx.hypot(dy)
 }
 
 /// One subpath of a flattened path: a range of points and whether it is closed.
@@ -821,6 +836,46 @@ pub(crate) mod tests {
                 if !inside {
                     prop_assert!(loc.distance_to_triangle(p, i) >= d - 1e-12);
                 }
+            }
+        }
+    }
+
+    /// A sparse mesh: two small squares of two triangles each, far apart, so that most of
+    /// the locator's grid is empty.
+    fn two_islands() -> (Vec<Point>, Vec<[u32; 3]>) {
+        let mut pts = Vec::new();
+        let mut tris = Vec::new();
+        for o in [Point::ZERO, Point::new(90.0, 60.0)] {
+            let k = pts.len() as u32;
+            pts.extend([
+                o,
+                o + Point::X * 4.0,
+                o + Point::new(4.0, 4.0),
+                o + Point::Y * 4.0,
+            ]);
+            tris.extend([[k, k + 1, k + 2], [k, k + 2, k + 3]]);
+        }
+        (pts, tris)
+    }
+
+    proptest! {
+        #[test]
+        fn the_nearest_triangle_is_the_brute_force_one(x in -300.0..400.0f64,
+                                                       y in -300.0..400.0f64,
+                                                       far in proptest::bool::ANY) {
+            // Points in the empty middle of the grid and far outside it, where the ring
+            // search stops on the strips of the grid beyond its rings: the same triangle as
+            // trying every one (the lowest index among equals).
+            let (pts, tris) = two_islands();
+            let loc = PointLocator::new(&pts, &tris).unwrap();
+            let p = Point::new(x, y) * if far { 40.0 } else { 1.0 };
+            let l = loc.locate(p);
+            let brute = (0..tris.len() as u32)
+                .map(|i| (loc.distance_to_triangle(p, i), i))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+                .unwrap();
+            if loc.containing(p).is_none() {
+                prop_assert_eq!(l.triangle, brute.1);
             }
         }
     }
