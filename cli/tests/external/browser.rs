@@ -61,39 +61,13 @@ fn screenshot(chrome: &Path, page: &Path, size: (u32, u32), work: &Path) -> Pixm
     Pixmap::load_png(&shot).unwrap()
 }
 
-/// (mean difference, share of pixels off by more than 32, by more than 64), on RGB.
-fn difference(a: &Pixmap, b: &Pixmap) -> (f64, f64, f64) {
-    assert_eq!((a.width(), a.height()), (b.width(), b.height()));
-    let (mut sum, mut over32, mut over64) = (0.0, 0usize, 0usize);
-    let n = a.pixels().len();
-    for (p, q) in a.pixels().iter().zip(b.pixels()) {
-        let (p, q) = (p.demultiply(), q.demultiply());
-        let d = [
-            p.red().abs_diff(q.red()),
-            p.green().abs_diff(q.green()),
-            p.blue().abs_diff(q.blue()),
-        ]
-        .into_iter()
-        .max()
-        .unwrap();
-        sum += d as f64;
-        over32 += (d > 32) as usize;
-        over64 += (d > 64) as usize;
-    }
-    (
-        sum / n as f64,
-        over32 as f64 / n as f64,
-        over64 as f64 / n as f64,
-    )
-}
-
 fn matches(shot: &Pixmap, reference: &Pixmap) -> bool {
-    let (mean, over32, over64) = difference(shot, reference);
+    let (mean, over32, over64) = tools::difference(shot, reference);
     mean <= 2.0 && over32 <= 0.01 && over64 <= 0.002
 }
 
 fn assert_matches(what: &str, shot: &Pixmap, reference: &Pixmap) {
-    let (mean, over32, over64) = difference(shot, reference);
+    let (mean, over32, over64) = tools::difference(shot, reference);
     eprintln!("{what}: mean {mean:.3}, >32 {over32:.5}, >64 {over64:.5}");
     assert!(
         matches(shot, reference),

@@ -220,30 +220,8 @@ fn shot(
     Pixmap::load_png(&png).unwrap()
 }
 
-/// (mean difference, share of pixels off by more than 32, by more than 64), on RGB.
-fn difference(a: &Pixmap, b: &Pixmap) -> (f64, f64, f64) {
-    assert_eq!((a.width(), a.height()), (b.width(), b.height()));
-    let (mut sum, mut over32, mut over64) = (0.0, 0usize, 0usize);
-    for (p, q) in a.pixels().iter().zip(b.pixels()) {
-        let (p, q) = (p.demultiply(), q.demultiply());
-        let d = [
-            p.red().abs_diff(q.red()),
-            p.green().abs_diff(q.green()),
-            p.blue().abs_diff(q.blue()),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
-        sum += d as f64;
-        over32 += (d > 32) as usize;
-        over64 += (d > 64) as usize;
-    }
-    let n = a.pixels().len() as f64;
-    (sum / n, over32 as f64 / n, over64 as f64 / n)
-}
-
 fn matches(shot: &Pixmap, reference: &Pixmap) -> bool {
-    let (mean, over32, over64) = difference(shot, reference);
+    let (mean, over32, over64) = tools::difference(shot, reference);
     mean <= 3.0 && over32 <= 0.01 && over64 <= 0.005
 }
 
@@ -271,7 +249,7 @@ fn players_show_frames(chrome: &Path, player: Player) -> Result<(), String> {
         for (&t, r) in times.iter().zip(&refs) {
             let frame = t * DURATION * FPS;
             let s = shot(chrome, &server, player, &file, frame, work.path());
-            let (mean, over32, over64) = difference(&s, r);
+            let (mean, over32, over64) = tools::difference(&s, r);
             eprintln!(
                 "{player:?} {name} at t = {t}: mean {mean:.3}, >32 {over32:.5}, >64 {over64:.5}"
             );

@@ -177,3 +177,26 @@ pub(crate) fn all(found: &[Found]) -> Found {
             .unwrap_or_else(|| Found::Missing("no program asked for".into())),
     }
 }
+
+/// (mean difference, share of pixels off by more than 32, by more than 64) of two images of
+/// one size: per pixel the largest difference of the demultiplied red, green and blue.
+pub(crate) fn difference(a: &tiny_skia::Pixmap, b: &tiny_skia::Pixmap) -> (f64, f64, f64) {
+    assert_eq!((a.width(), a.height()), (b.width(), b.height()));
+    let (mut sum, mut over32, mut over64) = (0.0, 0usize, 0usize);
+    for (p, q) in a.pixels().iter().zip(b.pixels()) {
+        let (p, q) = (p.demultiply(), q.demultiply());
+        let d = [
+            p.red().abs_diff(q.red()),
+            p.green().abs_diff(q.green()),
+            p.blue().abs_diff(q.blue()),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        sum += d as f64;
+        over32 += (d > 32) as usize;
+        over64 += (d > 64) as usize;
+    }
+    let n = a.pixels().len().max(1) as f64;
+    (sum / n, over32 as f64 / n, over64 as f64 / n)
+}
