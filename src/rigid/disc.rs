@@ -175,13 +175,33 @@ impl LocalTransforms {
 
     /// The reduced rotation graph: links between edges that share a vertex (module docs).
     pub(crate) fn rotation_links(&self, n: usize) -> Vec<(u32, u32)> {
-        let mut incident: Vec<Vec<u32>> = vec![Vec::new(); n];
-        for (k, &(i, j)) in self.edges.iter().enumerate() {
-            incident[i as usize].push(k as u32);
-            incident[j as usize].push(k as u32);
+        // Each vertex's incident edges in edge order, in compressed rows (one allocation, not
+        // one per vertex: this runs in every set-up).
+        let mut start = vec![0usize; n + 1];
+        for &(i, j) in &self.edges {
+            start[i as usize + 1] += 1;
+            start[j as usize + 1] += 1;
         }
-        let mut links = Vec::new();
-        for inc in &incident {
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut incident = vec![0u32; start[n]];
+        for (k, &(i, j)) in self.edges.iter().enumerate() {
+            for v in [i as usize, j as usize] {
+                incident[fill[v]] = k as u32;
+                fill[v] += 1;
+            }
+        }
+        let pairs: usize = (0..n)
+            .map(|v| {
+                let d = start[v + 1] - start[v];
+                d * d.saturating_sub(1) / 2
+            })
+            .sum();
+        let mut links = Vec::with_capacity(pairs);
+        for v in 0..n {
+            let inc = &incident[start[v]..start[v + 1]];
             for (a, &ka) in inc.iter().enumerate() {
                 for &kb in &inc[a + 1..] {
                     links.push((ka, kb));
