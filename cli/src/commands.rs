@@ -376,11 +376,27 @@ fn output_format(out: &Path, allowed: &[Format], command: &str) -> Result<Format
         .join(", ");
     match Format::of(out) {
         Some(f) if allowed.contains(&f) => Ok(f),
-        Some(_) => Err(Usage(format!(
-            "{}: crmorph {command} cannot write this format yet; use {names}",
-            out.display()
-        ))
-        .into()),
+        Some(f) => {
+            // Animations (a GIF, the preview page, Lottie) come from `crmorph morph`.
+            let animation = matches!(
+                f,
+                Format::Gif | Format::Html | Format::Lottie | Format::DotLottie
+            );
+            let hint = if animation && command != "morph" {
+                format!(
+                    "; {} is an animation: write it with crmorph morph",
+                    f.extension()
+                )
+            } else {
+                String::new()
+            };
+            Err(Usage(format!(
+                "{}: crmorph {command} writes {names}, not {}{hint}",
+                out.display(),
+                f.extension()
+            ))
+            .into())
+        }
         None => Err(Usage(format!(
             "{}: unknown output extension; crmorph {command} writes {names}",
             out.display()

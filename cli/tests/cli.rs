@@ -108,6 +108,26 @@ fn bad_usage_exits_2() {
         os(&dir.path().join("f.json")),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // An animation asked of `frame`: the formats it writes, and where the animation comes from.
+    let lottie = dir.path().join("f.lottie");
+    let o = run(&[
+        os("frame"),
+        os(&s),
+        os(&t),
+        os("--at"),
+        os("0.5"),
+        os("-o"),
+        os(&lottie),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("crmorph frame writes .json, .svg, .png, not .lottie"),
+        "{e}"
+    );
+    assert!(e.contains("write it with crmorph morph"), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(!lottie.exists());
 }
 
 #[test]
