@@ -105,12 +105,23 @@ pub fn clamp_time(t: f64) -> f64 {
 pub struct Interpolator {
     kind: Kind,
     n: usize,
+    /// Tells this interpolator's workspaces from others' ([`Interpolator::at`]).
+    id: u64,
+}
+
+/// A fresh [`Interpolator::id`].
+fn next_id() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Per-thread scratch buffers for [`Interpolator::at`], so evaluating a frame does not allocate.
-/// Get one from [`Interpolator::workspace`]; use it only with the interpolator that made it.
+/// Get one from [`Interpolator::workspace`]; given to another interpolator, it is remade for
+/// that one on first use (an allocation, not a panic).
 #[derive(Debug)]
 pub struct Workspace {
+    /// The [`Interpolator::id`] it was made for.
+    owner: u64,
     scratch: Option<FrameScratch>,
 }
 
@@ -155,7 +166,11 @@ impl Interpolator {
                 Kind::Linear(source.to_vec(), target.to_vec(), angles)
             }
         };
-        Ok(Interpolator { kind, n })
+        Ok(Interpolator {
+            kind,
+            n,
+            id: next_id(),
+        })
     }
 
     /// The disc method on compatible triangle meshes whose area rule measures only the
@@ -235,6 +250,7 @@ impl Interpolator {
         Ok(Interpolator {
             kind: Kind::Disc(d),
             n,
+            id: next_id(),
         })
     }
 
@@ -246,6 +262,7 @@ impl Interpolator {
         Ok(Interpolator {
             n: d.vertex_count(),
             kind: Kind::Disc(d),
+            id: next_id(),
         })
     }
 
@@ -266,6 +283,7 @@ impl Interpolator {
     /// Fresh scratch buffers for [`Interpolator::at`] (one per thread).
     pub fn workspace(&self) -> Workspace {
         Workspace {
+            owner: self.id,
             scratch: match &self.kind {
                 Kind::Disc(d) => Some(d.scratch()),
                 Kind::Triangle(tr, _) => Some(tr.scratch()),
@@ -274,12 +292,12 @@ impl Interpolator {
         }
     }
 
-    /// Vertices at `t ∈ [0, 1]` into `out` (`out.len() == vertex_count()`), without allocating.
-    /// A `t` outside [0, 1] is clamped ([`clamp_time`]): every motion holds its ends.
+    /// Vertices at `t ∈ [0, 1]` into `out` (`out.len() == vertex_count()`), without allocating
+    /// (but once, when `ws` was made by another interpolator). A `t` outside [0, 1] is clamped
+    /// ([`clamp_time`]): every motion holds its ends.
     ///
     /// # Panics
-    /// If `out` has the wrong length or `ws` comes from a different interpolator (programming
-    /// errors, not data errors).
+    /// If `out` has the wrong length (a programming error, not a data error).
     pub fn at(&self, t: f64, out: &mut [Point], ws: &mut Workspace) {
         assert_eq!(
             out.len(),
@@ -287,17 +305,12 @@ impl Interpolator {
             "output buffer length must equal vertex_count()"
         );
         let t = clamp_time(t);
+        if ws.owner != self.id {
+            *ws = self.workspace();
+        }
         match &self.kind {
-            Kind::Disc(d) => d.at(
-                t,
-                out,
-                ws.scratch.as_mut().expect("workspace of this interpolator"),
-            ),
-            Kind::Triangle(tr, _) => tr.at(
-                t,
-                out,
-                ws.scratch.as_mut().expect("workspace of this interpolator"),
-            ),
+            Kind::Disc(d) => d.at(t, out, ws.scratch.get_or_insert_with(|| d.scratch())),
+            Kind::Triangle(tr, _) => tr.at(t, out, ws.scratch.get_or_insert_with(|| tr.scratch())),
             Kind::Linear(p, q, _) => linear::blend(p, q, t, out),
         }
     }

@@ -107,6 +107,31 @@ fn end_frames_reproduce_source_and_target() {
 }
 
 #[test]
+fn a_workspace_of_another_interpolator_is_remade_not_a_panic() {
+    // A library user's slip: the workspace of a smaller mesh, or of another method.
+    let (small, small_tris) = grid(3, 3, 1.0);
+    let other = Interpolator::new(
+        Method::Triangle,
+        &small,
+        &bend(&small, 2.0, 0.5, 0.2),
+        &small_tris,
+    )
+    .unwrap();
+    let (src, tris) = grid(6, 4, 1.0);
+    let tgt: Vec<Point> = bend(&src, 5.0, 1.1, 0.8);
+    for m in METHODS {
+        let it = Interpolator::new(m, &src, &tgt, &tris).unwrap();
+        let mut ws = other.workspace();
+        let mut out = vec![Point::ZERO; it.vertex_count()];
+        it.at(0.4, &mut out, &mut ws);
+        assert_eq!(out, it.at_vec(0.4), "{m:?}");
+        // Remade once, it now serves this interpolator as its own does.
+        it.at(0.7, &mut out, &mut ws);
+        assert_eq!(out, it.at_vec(0.7), "{m:?}");
+    }
+}
+
+#[test]
 fn times_outside_the_morph_hold_its_ends() {
     // One rule for every method (`clamp_time`): before 0 the source, after 1 the target,
     // NaN the source; the disc method would otherwise keep turning past t = 1.
