@@ -177,22 +177,13 @@ impl LocalTransforms {
     pub(crate) fn rotation_links(&self, n: usize) -> Vec<(u32, u32)> {
         // Each vertex's incident edges in edge order, in compressed rows (one allocation, not
         // one per vertex: this runs in every set-up).
-        let mut start = vec![0usize; n + 1];
-        for &(i, j) in &self.edges {
-            start[i as usize + 1] += 1;
-            start[j as usize + 1] += 1;
-        }
-        for v in 0..n {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut incident = vec![0u32; start[n]];
-        for (k, &(i, j)) in self.edges.iter().enumerate() {
-            for v in [i as usize, j as usize] {
-                incident[fill[v]] = k as u32;
-                fill[v] += 1;
-            }
-        }
+        let (start, incident) = super::rotation::compressed_rows(
+            n,
+            self.edges
+                .iter()
+                .enumerate()
+                .flat_map(|(k, &(i, j))| [(i, k as u32), (j, k as u32)]),
+        );
         let pairs: usize = (0..n)
             .map(|v| {
                 let d = start[v + 1] - start[v];

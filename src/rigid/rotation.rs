@@ -58,22 +58,7 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
     }
     drop(order);
     // Tree adjacency in compressed rows.
-    let mut start = vec![0u32; n + 1];
-    for &(a, b) in &tree {
-        start[a as usize + 1] += 1;
-        start[b as usize + 1] += 1;
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut adj = vec![0u32; 2 * tree.len()];
-    for &(a, b) in &tree {
-        adj[fill[a as usize] as usize] = b;
-        fill[a as usize] += 1;
-        adj[fill[b as usize] as usize] = a;
-        fill[b as usize] += 1;
-    }
+    let (start, adj) = compressed_rows(n, tree.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
     // Root of each tree: smallest |α|, lowest index on ties.
     let mut root_of = vec![u32::MAX; n];
     for v in 0..n as u32 {
@@ -91,7 +76,7 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         stack.push(root);
         while let Some(v) = stack.pop() {
             let av = out[v as usize];
-            for &c in &adj[start[v as usize] as usize..start[v as usize + 1] as usize] {
+            for &c in &adj[start[v as usize]..start[v as usize + 1]] {
                 if !visited[c as usize] {
                     visited[c as usize] = true;
                     out[c as usize] = nearest_branch(out[c as usize], av);
@@ -101,6 +86,28 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         }
     }
     out
+}
+
+/// Compressed rows over `n` rows: `(start, values)`, where row `r`'s values, in the order
+/// `entries` gives them as `(r, value)`, are `values[start[r]..start[r + 1]]`.
+pub(crate) fn compressed_rows<I>(n: usize, entries: I) -> (Vec<usize>, Vec<u32>)
+where
+    I: Iterator<Item = (u32, u32)> + Clone,
+{
+    let mut start = vec![0usize; n + 1];
+    for (r, _) in entries.clone() {
+        start[r as usize + 1] += 1;
+    }
+    for r in 0..n {
+        start[r + 1] += start[r];
+    }
+    let mut fill = start.clone();
+    let mut values = vec![0u32; start[n]];
+    for (r, v) in entries {
+        values[fill[r as usize]] = v;
+        fill[r as usize] += 1;
+    }
+    (start, values)
 }
 
 /// The bits of `x` as an unsigned integer that orders as [`f64::total_cmp`] orders the floats:
