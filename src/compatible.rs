@@ -114,14 +114,11 @@ impl Compatible {
     }
 }
 
-/// Frames of the disc interpolation of `c` that invert a triangle, after fold repair, at
+/// Frames of `interp`, the disc interpolation of `c`, that invert a triangle after fold repair, at
 /// t = k/64 (k = 1…63), counted up to `enough` (the count stops there, a few frames at a time,
 /// when more would not change the caller's choice): the check that picks the mesh [`build`]
 /// returns.
-fn folded_frames(c: &Compatible, enough: usize) -> usize {
-    let Ok(interp) = c.interpolator(Method::Disc) else {
-        return usize::MAX;
-    };
+fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize) -> usize {
     let ts: Vec<f64> = (1..64).map(|k| k as f64 / 64.0).collect();
     let mut folded = 0;
     for chunk in ts.chunks(rayon::current_num_threads().max(1) * 2) {
@@ -209,6 +206,18 @@ fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) 
 
 /// Builds compatible triangulations of two drawings (§3, §5).
 pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
+    build_checked(source, target, opts).map(|(c, _)| c)
+}
+
+/// [`build`], with the disc interpolator of the meshes it returns ([`Compatible::interpolator`],
+/// set up for the fold check that chose them), for a caller that checks their motion further:
+/// automatic mode reads its frames again rather than setting it up a second time. `None` when
+/// the interpolator cannot be set up (the meshes are returned all the same).
+pub(crate) fn build_checked(
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+) -> Result<(Compatible, Option<Interpolator>)> {
     check_vertex_budget(source, target, opts)?;
     let (tol, pairs) = curve_pairs(source, target, opts)?;
     let fix = |e| name_files(e, source, target);
@@ -223,16 +232,25 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
     };
     // The harmonic map's own mesh unless its interpolation folds where the relaxed one folds
     // less (both after fold repair).
-    let folds = folded_frames(&plain, usize::MAX);
+    let Ok(plain_motion) = plain.interpolator(Method::Disc) else {
+        // No interpolation to check counts as folding everywhere: the relaxed mesh is better
+        // if it can be set up at all.
+        let mut relaxed = plain.clone();
+        relax_mapped(&mut relaxed.meshes, opts.triangulated);
+        return Ok(match relaxed.interpolator(Method::Disc) {
+            Ok(i) => (relaxed, Some(i)),
+            Err(_) => (plain, None),
+        });
+    };
+    let folds = folded_frames(&plain, &plain_motion, usize::MAX);
     if folds == 0 {
-        return Ok(plain);
+        return Ok((plain, Some(plain_motion)));
     }
     let mut relaxed = plain.clone();
     relax_mapped(&mut relaxed.meshes, opts.triangulated);
-    Ok(if folded_frames(&relaxed, folds) < folds {
-        relaxed
-    } else {
-        plain
+    Ok(match relaxed.interpolator(Method::Disc) {
+        Ok(i) if folded_frames(&relaxed, &i, folds) < folds => (relaxed, Some(i)),
+        _ => (plain, Some(plain_motion)),
     })
 }
 

@@ -18,12 +18,13 @@
 //! Holes that are not aligned as features still morph inside the shape (see
 //! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
 
-use crate::compatible::{build, Compatible, MorphOptions};
+use crate::compatible::{build_checked, Compatible, MorphOptions};
 use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
 use crate::geometry::Point;
 use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
+use crate::rigid::{DiscSetup, Interpolator, Repair};
 use crate::tolerance::Tolerances;
 
 use super::contours::Contour;
@@ -284,7 +285,9 @@ pub(crate) fn build_part(
         for triangulated in [Side::Source, Side::Target] {
             let mut o = inputs.opts.clone();
             o.triangulated = triangulated;
-            match build(&s, &t, &o).and_then(|c| moves_without_folding(&c).map(|r| (c, r))) {
+            let checked = build_checked(&s, &t, &o)
+                .and_then(|(c, motion)| moves_without_folding(&c, motion.as_ref()).map(|r| (c, r)));
+            match checked {
                 Ok((c, repair)) => {
                     let features = holes
                         .iter()
@@ -383,7 +386,7 @@ pub(crate) fn build_part(
             tolerances: tol,
             area_region: None,
         };
-        let r = moves_without_folding(&c);
+        let r = moves_without_folding(&c, None);
         if let Err(e) = &r {
             log::debug!(
                 "overlay of {}→{} ({} vertices): {e}",
@@ -431,48 +434,54 @@ const FOLD_CHUNK: usize = 4;
 /// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/16
 /// (k = 1…15), and with the fold repair of `rigid::repair` when the plain frames fold a few, at
 /// t = k/64 (repaired folds come and go between samples): a mesh whose frames fold even so is
-/// no better than a failed mapping. Returns whether the repair is needed.
-fn moves_without_folding(c: &Compatible) -> Result<bool> {
+/// no better than a failed mapping. Returns whether the repair is needed. `motion` is the
+/// disc interpolation of `c` as [`Compatible::interpolator`] sets it up, when the caller has
+/// it: the checks read its frames without the repair, and with the repair of free vertices
+/// only, instead of setting up two more.
+fn moves_without_folding(c: &Compatible, motion: Option<&Interpolator>) -> Result<bool> {
     let m = &c.meshes;
     let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
     // The first sample (in the order given) whose frame folds: a few frames at a time, in
     // parallel, stopping at the first chunk with a fold, so a mesh that fails costs a few
     // frames, not all of them.
-    let folds = |interp: &crate::rigid::Interpolator, ts: &[f64]| -> Option<(f64, usize)> {
+    let folds = |interp: &Interpolator, repair: Repair, ts: &[f64]| -> Option<(f64, usize)> {
         ts.chunks(FOLD_CHUNK).find_map(|chunk| {
             chunk
                 .iter()
-                .zip(interp.frames(chunk))
+                .zip(interp.frames_repairing(chunk, repair))
                 .map(|(&t, f)| (t, crate::mesh::count_inverted(&m.triangles, &f)))
                 .find(|&(_, n)| n > 0)
         })
     };
-    let plain = crate::rigid::Interpolator::new(
-        crate::rigid::Method::Disc,
-        &m.source,
-        &m.target,
-        &m.triangles,
-    )?;
-    let Some((t, folded)) = folds(&plain, &ts) else {
+    // The disc interpolation with the repair of free vertices (curve vertices held), read
+    // without it for the plain frames. Set up here unless the caller has it.
+    let own;
+    let motion = match motion {
+        Some(m) => m,
+        None => {
+            let mut on_curve = vec![false; m.source.len()];
+            for &v in m.curves.iter().flat_map(|c| &c.vertices) {
+                on_curve[v as usize] = true;
+            }
+            own = Interpolator::disc(
+                &m.source,
+                &m.target,
+                &DiscSetup {
+                    triangles: &m.triangles,
+                    repair: Some((&m.triangles, &on_curve)),
+                    ..Default::default()
+                },
+            )?;
+            &own
+        }
+    };
+    let Some((t, folded)) = folds(motion, Repair::Off, &ts) else {
         return Ok(false);
     };
-    let mut on_curve = vec![false; m.source.len()];
-    for &v in m.curves.iter().flat_map(|c| &c.vertices) {
-        on_curve[v as usize] = true;
-    }
-    let repaired = crate::rigid::Interpolator::disc(
-        &m.source,
-        &m.target,
-        &crate::rigid::DiscSetup {
-            triangles: &m.triangles,
-            repair: Some((&m.triangles, &on_curve)),
-            ..Default::default()
-        },
-    )?;
     // Nearest the plain fold first: where a repair fails, it fails there.
     let mut fine: Vec<f64> = (1..64).map(|i| i as f64 / 64.0).collect();
     fine.sort_by(|a, b| (a - t).abs().total_cmp(&(b - t).abs()).then(a.total_cmp(b)));
-    match folds(&repaired, &fine) {
+    match folds(motion, Repair::FreeOnly, &fine) {
         None => Ok(true),
         Some((t2, left)) => Err(Error::input(
             "<auto>",

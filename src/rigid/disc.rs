@@ -38,6 +38,7 @@ use super::assembly::{
 };
 use super::rotation::consistent_angles;
 use super::sincos::sin_cos_many;
+use super::Repair;
 use crate::error::{Error, Result};
 use crate::geometry::{bounding_box, Point};
 
@@ -546,6 +547,20 @@ impl DiscRigid {
         out: &mut [Point],
         ws: &mut FrameScratch,
     ) {
+        self.at_repairing(t, targets, adjust, out, ws, Repair::AsSetUp);
+    }
+
+    /// [`DiscRigid::at_adjusted`] with the fold repair as `repair` says, not necessarily as
+    /// set up: the checks of automatic mode read one interpolator three ways.
+    pub(crate) fn at_repairing(
+        &self,
+        t: f64,
+        targets: &[Point],
+        adjust: Option<&[Point]>,
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+        repair: Repair,
+    ) {
         let rhs = &mut ws.solve.rhs;
         rhs.fill(Point::ZERO);
         // Rotations a chunk at a time, each used while it is still in registers and L1.
@@ -619,8 +634,16 @@ impl DiscRigid {
         self.system.solve(&mut ws.solve, &ws.centroids, out);
         // Repair first, then the area rule: its uniform scales keep every orientation, and the
         // area comes out exact whatever the repair moved.
-        if let Some(repair) = &self.repair {
-            repair.apply(out);
+        if let Some(fold) = &self.repair {
+            match repair {
+                Repair::AsSetUp => {
+                    fold.apply(out);
+                }
+                Repair::FreeOnly => {
+                    fold.apply_with(out, false);
+                }
+                Repair::Off => {}
+            }
         }
         if let Some(rule) = &self.area {
             rule.apply(

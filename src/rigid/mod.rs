@@ -99,6 +99,17 @@ pub fn clamp_time(t: f64) -> f64 {
     }
 }
 
+/// How a frame of the disc method applies its fold repair (`repair.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Repair {
+    /// As the interpolator was set up (none, free vertices, or curve vertices too).
+    AsSetUp,
+    /// Free vertices only, even where the set-up lets curve vertices move.
+    FreeOnly,
+    /// None: the solve of eq. (1) and the area rule alone.
+    Off,
+}
+
 /// An interpolation between two compatible point sets, set up once (local transformations,
 /// consistent rotations, factored normal equations) and evaluated per frame.
 #[derive(Debug)]
@@ -330,6 +341,28 @@ impl Interpolator {
             self.n,
             || self.workspace(),
             |t, out, ws| self.at(t, out, ws),
+        )
+    }
+
+    /// Frames at `ts` like [`Interpolator::frames`], with the disc method's fold repair as
+    /// `repair` says rather than as set up (other methods have none). Automatic mode checks one
+    /// mesh's motion three ways — plain, repaired by free vertices, repaired as set up — and
+    /// sets up the interpolator once for all three.
+    pub(crate) fn frames_repairing(&self, ts: &[f64], repair: Repair) -> Vec<Vec<Point>> {
+        parallel_frames(
+            ts,
+            self.n,
+            || self.workspace(),
+            |t, out, ws| match &self.kind {
+                Kind::Disc(d) => {
+                    if ws.owner != self.id {
+                        *ws = self.workspace();
+                    }
+                    let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
+                    d.at_repairing(clamp_time(t), &[], None, out, scratch, repair);
+                }
+                _ => self.at(t, out, ws),
+            },
         )
     }
 

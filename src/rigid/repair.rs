@@ -82,6 +82,12 @@ impl FoldRepair {
     /// so the next pass also moves its free neighbours, which reopens its kernel; the region
     /// grows by one ring per pass, and only around the folds.
     pub(crate) fn apply(&self, out: &mut [Point]) -> usize {
+        self.apply_with(out, self.curves_may_move)
+    }
+
+    /// [`FoldRepair::apply`], moving curve vertices as a last resort only with
+    /// `curves_may_move`, whatever the repair was set up with.
+    pub(crate) fn apply_with(&self, out: &mut [Point], curves_may_move: bool) -> usize {
         let mut bad: Vec<u32> = (0..self.triangles.len() as u32)
             .filter(|&f| !positive(out, self.triangles[f as usize]))
             .collect();
@@ -93,7 +99,7 @@ impl FoldRepair {
             // Corners locked by their folded neighbours: re-embed a patch around each fold.
             self.reembed(out, &mut bad, false);
         }
-        if !bad.is_empty() && self.curves_may_move {
+        if !bad.is_empty() && curves_may_move {
             // The curves themselves fold here (a curve vertex is on the wrong side of its
             // neighbours' sides): curve vertices may move too, as little as they can.
             self.passes(out, &mut bad, true);

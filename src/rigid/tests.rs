@@ -132,6 +132,57 @@ fn a_workspace_of_another_interpolator_is_remade_not_a_panic() {
 }
 
 #[test]
+fn one_interpolator_read_three_ways_gives_the_frames_of_three() {
+    // Automatic mode reads one interpolator's frames without the fold repair and with the
+    // repair of free vertices only, instead of setting up one interpolator for each: each
+    // reading must give the bits of the interpolator set up that way.
+    let (src, tris) = grid(7, 7, 1.0);
+    let mut tgt = src.clone();
+    // An interior vertex thrown across its neighbours: the frames near the target fold there.
+    tgt[2 * 7 + 2] = Point::new(4.6, 3.7);
+    let on_curve: Vec<bool> = (0..src.len())
+        .map(|k| {
+            let (i, j) = (k % 7, k / 7);
+            i == 0 || j == 0 || i == 6 || j == 6
+        })
+        .collect();
+    let set_up = |curves: bool| {
+        Interpolator::disc(
+            &src,
+            &tgt,
+            &DiscSetup {
+                triangles: &tris,
+                repair: Some((&tris, &on_curve)),
+                repair_curves: curves,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let (full, free) = (set_up(true), set_up(false));
+    let plain = Interpolator::new(Method::Disc, &src, &tgt, &tris).unwrap();
+    let ts = [0.3, 0.6, 0.8, 0.95];
+    assert_eq!(full.frames_repairing(&ts, Repair::Off), plain.frames(&ts));
+    assert_eq!(
+        full.frames_repairing(&ts, Repair::FreeOnly),
+        free.frames(&ts)
+    );
+    assert_eq!(
+        full.frames_repairing(&ts, Repair::AsSetUp),
+        full.frames(&ts)
+    );
+    // The readings differ where it matters: the plain frames fold, the repaired ones less.
+    let folds = |f: &Vec<Point>| crate::mesh::count_inverted(&tris, f);
+    let (raw, fixed) = (plain.frames(&[0.95]), free.frames(&[0.95]));
+    assert!(
+        folds(&raw[0]) > folds(&fixed[0]),
+        "{} vs {}",
+        folds(&raw[0]),
+        folds(&fixed[0])
+    );
+}
+
+#[test]
 fn times_outside_the_morph_hold_its_ends() {
     // One rule for every method (`clamp_time`): before 0 the source, after 1 the target,
     // NaN the source; the disc method would otherwise keep turning past t = 1.
