@@ -531,28 +531,17 @@ impl DiscRigid {
         out: &mut [Point],
         ws: &mut FrameScratch,
     ) {
-        self.at_adjusted(t, targets, None, out, ws);
+        self.at_adjusted(t, targets, None, out, ws, Repair::AsSetUp);
     }
 
     /// [`DiscRigid::at_with_targets`] with every local transformation of point `i`'s disc
     /// further rotated and scaled by the complex factor `adjust[i]` (`scale · (cos θ, sin θ)`):
     /// the bone transformations added to the disc transformations in §4.2.2. An edge's term
     /// stands for the transformations of both end points' discs (`L_(i,j)` and `L_(j,i)`, equal
-    /// before adjustment), so it takes the mean of the two factors.
+    /// before adjustment), so it takes the mean of the two factors. The fold repair is applied
+    /// as `repair` says ([`Repair::AsSetUp`] but for automatic mode's checks, which read one
+    /// interpolator three ways).
     pub(crate) fn at_adjusted(
-        &self,
-        t: f64,
-        targets: &[Point],
-        adjust: Option<&[Point]>,
-        out: &mut [Point],
-        ws: &mut FrameScratch,
-    ) {
-        self.at_repairing(t, targets, adjust, out, ws, Repair::AsSetUp);
-    }
-
-    /// [`DiscRigid::at_adjusted`] with the fold repair as `repair` says, not necessarily as
-    /// set up: the checks of automatic mode read one interpolator three ways.
-    pub(crate) fn at_repairing(
         &self,
         t: f64,
         targets: &[Point],

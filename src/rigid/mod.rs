@@ -359,7 +359,7 @@ impl Interpolator {
                         *ws = self.workspace();
                     }
                     let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
-                    d.at_repairing(clamp_time(t), &[], None, out, scratch, repair);
+                    d.at_adjusted(clamp_time(t), &[], None, out, scratch, repair);
                 }
                 _ => self.at(t, out, ws),
             },

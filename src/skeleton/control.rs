@@ -24,7 +24,7 @@ use crate::artwork::{Location, PointLocator};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 use crate::mesh::{CompatibleMeshes, CurveKind};
-use crate::rigid::{DiscRigid, ExtraRow, FrameScratch};
+use crate::rigid::{DiscRigid, ExtraRow, FrameScratch, Repair};
 
 /// Weight of a joint's row in eq. (2), relative to eq. (1)'s unit edge weights (a mesh vertex's
 /// own diagonal is about 12): strong enough that frames meet a pose to within a small fraction of
@@ -289,7 +289,7 @@ impl SkeletonControl {
             };
         }
         c.constrained
-            .at_adjusted(t, &desired, Some(&ws.adjust), out, cws);
+            .at_adjusted(t, &desired, Some(&ws.adjust), out, cws, Repair::AsSetUp);
     }
 
     /// The mesh at `t` in a new vector.
