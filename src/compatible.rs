@@ -114,10 +114,10 @@ impl Compatible {
     }
 }
 
-/// Frames of `interp`, the disc interpolation of `c`, that invert a triangle after fold repair, at
-/// t = k/64 (k = 1…63), counted up to `enough` (the count stops there, a few frames at a time,
-/// when more would not change the caller's choice): the check that picks the mesh [`build`]
-/// returns.
+/// Frames of `interp`, the disc interpolation of `c`, that invert a triangle after fold
+/// repair, at t = k/64 (k = 1…63), counted up to `enough` (the count stops there, a few frames
+/// at a time, when more would not change the caller's choice): the check that picks the mesh
+/// [`build`] returns.
 fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize) -> usize {
     let ts: Vec<f64> = (1..64).map(|k| k as f64 / 64.0).collect();
     let mut folded = 0;
