@@ -38,21 +38,26 @@ pub(crate) struct Carried {
 }
 
 fn attach(boundary: &[Point], p: Point) -> Attachment {
+    // Boundary vertices in order of distance (ties by index). Only the nearest few set the
+    // radius and only those within it are kept, so the k nearest are selected and the kept
+    // ones sorted, not the whole boundary (for every feature vertex).
+    let order = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
     let mut by_distance: Vec<(f64, u32)> = boundary
         .iter()
         .enumerate()
         .map(|(i, b)| (b.distance_squared(p), i as u32))
         .collect();
-    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    let nearest = by_distance[0].0;
+    let k = MIN_CARRIERS.min(by_distance.len());
+    let (nearest_k, kth, _) = by_distance.select_nth_unstable_by(k - 1, order);
+    let nearest = nearest_k.iter().min_by(|x, y| order(x, y)).unwrap_or(kth).0;
     // Radius²: REACH times the distance, but wide enough for MIN_CARRIERS vertices, and a
     // little beyond the last one kept so that every carrier has a positive weight.
-    let k = MIN_CARRIERS.min(by_distance.len());
-    let r2 = (REACH * REACH * nearest).max(by_distance[k - 1].0) * (1.0 + 1e-6) + f64::MIN_POSITIVE;
+    let r2 = (REACH * REACH * nearest).max(kth.0) * (1.0 + 1e-6) + f64::MIN_POSITIVE;
     let floor = 1e-12 * r2;
+    by_distance.retain(|c| c.0 < r2);
+    by_distance.sort_unstable_by(order);
     let carriers: Vec<(u32, f64)> = by_distance
         .iter()
-        .take_while(|c| c.0 < r2)
         .map(|&(d2, i)| (i, 1.0 / d2.max(floor) - 1.0 / r2))
         .collect();
     Attachment { point: p, carriers }
@@ -124,6 +129,49 @@ impl Carried {
                 let p1 = carry(a1, &self.boundary[1], boundary_t);
                 p0 * (1.0 - t) + p1 * t
             }));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The attachment as first written: the whole boundary sorted by distance.
+    fn attach_by_full_sort(boundary: &[Point], p: Point) -> Vec<(u32, f64)> {
+        let mut by_distance: Vec<(f64, u32)> = boundary
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.distance_squared(p), i as u32))
+            .collect();
+        by_distance.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let nearest = by_distance[0].0;
+        let k = MIN_CARRIERS.min(by_distance.len());
+        let r2 =
+            (REACH * REACH * nearest).max(by_distance[k - 1].0) * (1.0 + 1e-6) + f64::MIN_POSITIVE;
+        let floor = 1e-12 * r2;
+        by_distance
+            .iter()
+            .take_while(|c| c.0 < r2)
+            .map(|&(d2, i)| (i, 1.0 / d2.max(floor) - 1.0 / r2))
+            .collect()
+    }
+
+    proptest! {
+        /// Selecting the nearest few and sorting only the kept carriers gives the carriers and
+        /// weights, bit for bit and in order, of sorting the whole boundary: on a coarse grid,
+        /// so that equal distances (ties broken by index), repeated vertices, a point on the
+        /// boundary and boundaries shorter than MIN_CARRIERS all occur.
+        #[test]
+        fn selecting_the_nearest_gives_the_carriers_of_a_full_sort(
+            boundary in proptest::collection::vec((-5i32..6, -5i32..6), 1..40),
+            p in (-6i32..7, -6i32..7),
+        ) {
+            let b: Vec<Point> = boundary.iter().map(|&(x, y)| Point::new(x as f64, y as f64)).collect();
+            let q = Point::new(p.0 as f64 * 0.5, p.1 as f64);
+            let bits = |c: &[(u32, f64)]| c.iter().map(|&(i, w)| (i, w.to_bits())).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&attach(&b, q).carriers), bits(&attach_by_full_sort(&b, q)));
         }
     }
 }
