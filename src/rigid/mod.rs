@@ -310,6 +310,11 @@ impl Interpolator {
     /// # Panics
     /// If `out` has the wrong length (a programming error, not a data error).
     pub fn at(&self, t: f64, out: &mut [Point], ws: &mut Workspace) {
+        self.at_repairing(t, out, ws, Repair::AsSetUp);
+    }
+
+    /// [`Interpolator::at`] with the disc method's fold repair as `repair` says.
+    fn at_repairing(&self, t: f64, out: &mut [Point], ws: &mut Workspace, repair: Repair) {
         assert_eq!(
             out.len(),
             self.n,
@@ -320,7 +325,10 @@ impl Interpolator {
             *ws = self.workspace();
         }
         match &self.kind {
-            Kind::Disc(d) => d.at(t, out, ws.scratch.get_or_insert_with(|| d.scratch())),
+            Kind::Disc(d) => {
+                let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
+                d.at_adjusted(t, &[], None, out, scratch, repair);
+            }
             Kind::Triangle(tr, _) => tr.at(t, out, ws.scratch.get_or_insert_with(|| tr.scratch())),
             Kind::Linear(p, q, _) => linear::blend(p, q, t, out),
         }
@@ -353,16 +361,7 @@ impl Interpolator {
             ts,
             self.n,
             || self.workspace(),
-            |t, out, ws| match &self.kind {
-                Kind::Disc(d) => {
-                    if ws.owner != self.id {
-                        *ws = self.workspace();
-                    }
-                    let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
-                    d.at_adjusted(clamp_time(t), &[], None, out, scratch, repair);
-                }
-                _ => self.at(t, out, ws),
-            },
+            |t, out, ws| self.at_repairing(t, out, ws, repair),
         )
     }
 
