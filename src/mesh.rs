@@ -206,9 +206,69 @@ pub fn edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
         .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
         .map(|(a, b)| (a.min(b), a.max(b)))
         .collect();
-    e.sort_unstable();
+    sort_pairs(&mut e);
     e.dedup();
     e
+}
+
+/// Compressed rows over `n` rows: `(start, values)`, where row `r`'s values, in the order
+/// `entries` gives them as `(r, value)`, are `values[start[r]..start[r + 1]]`. Every `r` must
+/// be below `n`.
+pub(crate) fn compressed_rows<I>(n: usize, entries: I) -> (Vec<usize>, Vec<u32>)
+where
+    I: Iterator<Item = (u32, u32)> + Clone,
+{
+    let mut start = vec![0usize; n + 1];
+    for (r, _) in entries.clone() {
+        start[r as usize + 1] += 1;
+    }
+    for r in 0..n {
+        start[r + 1] += start[r];
+    }
+    let mut fill = start.clone();
+    let mut values = vec![0u32; start[n]];
+    for (r, v) in entries {
+        values[fill[r as usize]] = v;
+        fill[r as usize] += 1;
+    }
+    (start, values)
+}
+
+/// [`compressed_rows`] with every row sorted: read in row order, the pairs in the order
+/// `sort_unstable` gives them.
+pub(crate) fn sorted_rows<I>(n: usize, entries: I) -> (Vec<usize>, Vec<u32>)
+where
+    I: Iterator<Item = (u32, u32)> + Clone,
+{
+    let (start, mut values) = compressed_rows(n, entries);
+    for r in 0..n {
+        values[start[r]..start[r + 1]].sort_unstable();
+    }
+    (start, values)
+}
+
+/// Sorts `pairs` into the order `sort_unstable` gives (lexicographic), by rows: a counting pass
+/// over the first indices, then a sort of each row's few second indices. On a mesh's edges
+/// that is linear where a comparison sort pays a log factor, and every set-up of a mesh sorts
+/// its edges several times (issue 16). Pairs whose first indices are sparse (more rows than
+/// pairs would be made) are sorted by comparison.
+pub(crate) fn sort_pairs(pairs: &mut Vec<(u32, u32)>) {
+    let Some(n) = pairs.iter().map(|p| p.0 as usize + 1).max() else {
+        return;
+    };
+    if n > 4 * pairs.len() + 64 {
+        pairs.sort_unstable();
+        return;
+    }
+    let (start, seconds) = sorted_rows(n, pairs.iter().copied());
+    pairs.clear();
+    for r in 0..n {
+        pairs.extend(
+            seconds[start[r]..start[r + 1]]
+                .iter()
+                .map(|&s| (r as u32, s)),
+        );
+    }
 }
 
 /// Whether triangle `t` is strictly counter-clockwise in `points` (exact predicate).
@@ -233,13 +293,19 @@ pub(crate) fn stars(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>
 
 /// One-ring neighbour lists (the "discs" of §4.1 for a triangulation), each sorted ascending.
 pub fn one_rings(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
-    let mut rings = vec![Vec::new(); vertex_count];
-    for (a, b) in edges(triangles) {
+    let edges = edges(triangles);
+    let mut degree = vec![0usize; vertex_count];
+    for &(a, b) in &edges {
+        degree[a as usize] += 1;
+        degree[b as usize] += 1;
+    }
+    let mut rings: Vec<Vec<u32>> = degree.into_iter().map(Vec::with_capacity).collect();
+    // The edges come sorted, so each ring receives its smaller neighbours (as the second
+    // index of `(lo, v)`) in ascending order before its larger ones (as `(v, hi)`): every ring
+    // is sorted as it is filled.
+    for (a, b) in edges {
         rings[a as usize].push(b);
         rings[b as usize].push(a);
-    }
-    for r in &mut rings {
-        r.sort_unstable();
     }
     rings
 }
@@ -258,6 +324,22 @@ pub(crate) fn hexagon_fan() -> (Vec<Point>, Vec<[u32; 3]>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// The counting sort of pairs gives `sort_unstable`'s order, dense and sparse first
+        /// indices (the comparison fallback) alike, duplicates kept.
+        #[test]
+        fn pairs_are_sorted_as_sort_unstable_sorts_them(
+            pairs in proptest::collection::vec((0u32..50, 0u32..50), 0..400),
+            spread in 1u32..100_000,
+        ) {
+            let mut pairs: Vec<(u32, u32)> = pairs.iter().map(|&(a, b)| (a * spread, b)).collect();
+            let mut expected = pairs.clone();
+            expected.sort_unstable();
+            sort_pairs(&mut pairs);
+            proptest::prop_assert_eq!(pairs, expected);
+        }
+    }
 
     fn square() -> CompatibleMeshes {
         let s = vec![

@@ -39,19 +39,26 @@ fn signed_area(points: &[Point], tri: [u32; 3]) -> f64 {
     0.5 * (b - a).perp_dot(c - a)
 }
 
-/// The directed edges of `triangles` whose reverse is not among them (each kept once per
-/// occurrence), sorted.
-fn border_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
-    let mut edges: Vec<(u32, u32)> = triangles
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .collect();
-    edges.sort_unstable();
-    edges
-        .iter()
-        .filter(|&&(a, b)| edges.binary_search(&(b, a)).is_err())
-        .copied()
-        .collect()
+/// The directed edges of `triangles` (indices below `n`) whose reverse is not among them (each
+/// kept once per occurrence), sorted. Each vertex's outgoing edges are one sorted row, so the
+/// reverse of `(a, b)` is looked up in `b`'s few.
+fn border_edges(triangles: &[[u32; 3]], n: usize) -> Vec<(u32, u32)> {
+    let (start, to) = crate::mesh::sorted_rows(
+        n,
+        triangles
+            .iter()
+            .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]),
+    );
+    let row = |v: usize| &to[start[v]..start[v + 1]];
+    let mut border = Vec::new();
+    for a in 0..n {
+        for &b in row(a) {
+            if !row(b as usize).contains(&(a as u32)) {
+                border.push((a as u32, b));
+            }
+        }
+    }
+    border
 }
 
 /// Twice the signed area enclosed by the border edges of every part, into `areas`.
@@ -75,7 +82,7 @@ impl AreaRule {
         source: &[Point],
         target: &[Point],
     ) -> Self {
-        let border: Vec<(u32, u32, u32)> = border_edges(triangles)
+        let border: Vec<(u32, u32, u32)> = border_edges(triangles, comp.len())
             .into_iter()
             .chain(cycles.iter().copied())
             .map(|(a, b)| (a, b, comp[a as usize]))
@@ -197,7 +204,7 @@ mod tests {
                 tris.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
             }
         }
-        let border: Vec<(u32, u32, u32)> = border_edges(&tris)
+        let border: Vec<(u32, u32, u32)> = border_edges(&tris, pts.len())
             .into_iter()
             .map(|(a, b)| (a, b, 0))
             .collect();

@@ -52,6 +52,8 @@ const MIN_EDGE_FRACTION: f64 = 1e-12;
 /// The local transformations of every disc, one per undirected edge (module docs).
 #[derive(Debug, Clone)]
 pub(crate) struct LocalTransforms {
+    /// The discs as pairs: `(i, j)` for every `j` in `p_i`'s disc, once each, sorted.
+    pub(crate) directed: Vec<(u32, u32)>,
     /// Undirected edges `(i, j)` with `i < j`, sorted.
     pub(crate) edges: Vec<(u32, u32)>,
     /// How many of the two directions appear in the discs (1 or 2).
@@ -121,18 +123,19 @@ impl LocalTransforms {
                 directed.push((i as u32, j));
             }
         }
-        directed.sort_unstable();
+        crate::mesh::sort_pairs(&mut directed);
         directed.dedup();
         let mut undirected: Vec<(u32, u32)> = directed
             .iter()
             .map(|&(i, j)| (i.min(j), i.max(j)))
             .collect();
-        undirected.sort_unstable();
+        crate::mesh::sort_pairs(&mut undirected);
         let (min_src, min_tgt) = (
             MIN_EDGE_FRACTION * diagonal(source),
             MIN_EDGE_FRACTION * diagonal(target),
         );
         let mut t = LocalTransforms {
+            directed: Vec::new(),
             edges: Vec::new(),
             weight: Vec::new(),
             d: Vec::new(),
@@ -171,14 +174,43 @@ impl LocalTransforms {
             t.alpha.push(a);
             t.scale.push(le / ld);
         }
+        t.directed = directed;
         Ok(t)
+    }
+
+    /// The mean of `alpha` (one angle per edge) over each point's disc: the rotation of the
+    /// point's local transformations. Each disc is summed in ascending neighbour order, as
+    /// `Iterator::sum` would sum it; an empty disc has 0.
+    pub(crate) fn disc_means(&self, n: usize, alpha: &[f64]) -> Vec<f64> {
+        // First edge of each smaller end: an edge `(lo, hi)` is found in `lo`'s short run.
+        let mut first = vec![self.edges.len(); n + 1];
+        for (k, &(i, _)) in self.edges.iter().enumerate().rev() {
+            first[i as usize] = k;
+        }
+        for v in (0..n).rev() {
+            first[v] = first[v].min(first[v + 1]);
+        }
+        let mut sum = vec![-0.0f64; n];
+        let mut count = vec![0u32; n];
+        for &(i, j) in &self.directed {
+            let key = (i.min(j), i.max(j));
+            let run = &self.edges[first[key.0 as usize]..first[key.0 as usize + 1]];
+            if let Some(k) = run.iter().position(|&e| e == key) {
+                sum[i as usize] += alpha[first[key.0 as usize] + k];
+            }
+            count[i as usize] += 1;
+        }
+        sum.iter()
+            .zip(&count)
+            .map(|(&s, &c)| if c == 0 { 0.0 } else { s / f64::from(c) })
+            .collect()
     }
 
     /// The reduced rotation graph: links between edges that share a vertex (module docs).
     pub(crate) fn rotation_links(&self, n: usize) -> Vec<(u32, u32)> {
         // Each vertex's incident edges in edge order, in compressed rows (one allocation, not
         // one per vertex: this runs in every set-up).
-        let (start, incident) = super::rotation::compressed_rows(
+        let (start, incident) = crate::mesh::compressed_rows(
             n,
             self.edges
                 .iter()
@@ -377,27 +409,7 @@ impl DiscRigid {
             })
             .collect();
         // rotation_at: mean consistent angle of the transformations L_(i,j), j ∈ P_i.
-        let rotation = discs
-            .iter()
-            .enumerate()
-            .map(|(i, disc)| {
-                let mut disc = disc.clone();
-                disc.sort_unstable();
-                disc.dedup();
-                let sum: f64 = disc
-                    .iter()
-                    .map(|&j| {
-                        let key = ((i as u32).min(j), (i as u32).max(j));
-                        local.edges.binary_search(&key).map_or(0.0, |k| alpha[k])
-                    })
-                    .sum();
-                if disc.is_empty() {
-                    0.0
-                } else {
-                    sum / disc.len() as f64
-                }
-            })
-            .collect();
+        let rotation = local.disc_means(n, &alpha);
         let count = system.component_count();
         Ok(DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
@@ -649,6 +661,49 @@ impl DiscRigid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// Each disc's mean angle, summed by disc pairs, is bit for bit the mean over the
+        /// disc sorted and deduplicated with each edge's angle found by binary search (how it
+        /// was computed before), repeated and unsorted discs included.
+        #[test]
+        fn disc_means_match_the_mean_over_each_sorted_disc(
+            coords in proptest::collection::vec((-10.0f64..10.0, -10.0f64..10.0), 3..30),
+            raw_discs in proptest::collection::vec(proptest::collection::vec(0u32..30, 0..8), 30),
+            seed in -3.0f64..3.0,
+        ) {
+            let n = coords.len();
+            let pts: Vec<Point> = coords.iter().map(|&(x, y)| Point::new(x, y)).collect();
+            let discs: Vec<Vec<u32>> = raw_discs[..n]
+                .iter()
+                .enumerate()
+                .map(|(i, d)| d.iter().map(|&j| j % n as u32).filter(|&j| j as usize != i).collect())
+                .collect();
+            let Ok(local) = LocalTransforms::new(&pts, &pts, &discs) else {
+                return Ok(());
+            };
+            let alpha: Vec<f64> = (0..local.edges.len()).map(|k| seed * (k as f64 + 0.37).sin()).collect();
+            let expected: Vec<f64> = discs
+                .iter()
+                .enumerate()
+                .map(|(i, disc)| {
+                    let mut disc = disc.clone();
+                    disc.sort_unstable();
+                    disc.dedup();
+                    let sum: f64 = disc
+                        .iter()
+                        .map(|&j| {
+                            let key = ((i as u32).min(j), (i as u32).max(j));
+                            local.edges.binary_search(&key).map_or(0.0, |k| alpha[k])
+                        })
+                        .sum();
+                    if disc.is_empty() { 0.0 } else { sum / disc.len() as f64 }
+                })
+                .collect();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&local.disc_means(n, &alpha)), bits(&expected));
+        }
+    }
 
     /// Eq. (2)'s hook: one extra row holding the midpoint of an edge at a moving target. The
     /// shape is the unit square, target = source, so eq. (1) wants a rigid square; with the

@@ -58,7 +58,8 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
     }
     drop(order);
     // Tree adjacency in compressed rows.
-    let (start, adj) = compressed_rows(n, tree.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
+    let (start, adj) =
+        crate::mesh::compressed_rows(n, tree.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
     // Root of each tree: smallest |α|, lowest index on ties.
     let mut root_of = vec![u32::MAX; n];
     for v in 0..n as u32 {
@@ -86,28 +87,6 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         }
     }
     out
-}
-
-/// Compressed rows over `n` rows: `(start, values)`, where row `r`'s values, in the order
-/// `entries` gives them as `(r, value)`, are `values[start[r]..start[r + 1]]`.
-pub(crate) fn compressed_rows<I>(n: usize, entries: I) -> (Vec<usize>, Vec<u32>)
-where
-    I: Iterator<Item = (u32, u32)> + Clone,
-{
-    let mut start = vec![0usize; n + 1];
-    for (r, _) in entries.clone() {
-        start[r as usize + 1] += 1;
-    }
-    for r in 0..n {
-        start[r + 1] += start[r];
-    }
-    let mut fill = start.clone();
-    let mut values = vec![0u32; start[n]];
-    for (r, v) in entries {
-        values[fill[r as usize]] = v;
-        fill[r as usize] += 1;
-    }
-    (start, values)
 }
 
 /// The bits of `x` as an unsigned integer that orders as [`f64::total_cmp`] orders the floats:
