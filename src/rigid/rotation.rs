@@ -22,40 +22,18 @@ use std::f64::consts::{PI, TAU};
 /// that brings it within π of its parent.
 pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64> {
     let n = angles.len();
-    // Kruskal: sort links by cost (in `f64::total_cmp`'s order), then by node indices, as one
-    // integer key each: sorting plain integers is several times faster than comparing tuples,
-    // and the order is the same.
-    let mut order: Vec<u128> = links
-        .iter()
-        .filter(|(a, b)| a != b)
-        .map(|&(a, b)| {
-            let (a, b) = (a.min(b), a.max(b));
-            let cost = turn_between(angles[a as usize], angles[b as usize]);
-            (u128::from(total_order_bits(cost)) << 64) | (u128::from(a) << 32) | u128::from(b)
-        })
-        .collect();
-    order.sort_unstable();
+    // Kruskal: links in order of cost (in `f64::total_cmp`'s order), then of node indices, as
+    // one integer key each: ordering plain integers is several times faster than comparing
+    // tuples, and the order is the same.
+    let mut order: Vec<u128> = Vec::with_capacity(links.len());
+    order.extend(links.iter().filter(|(a, b)| a != b).map(|&(a, b)| {
+        let (a, b) = (a.min(b), a.max(b));
+        let cost = turn_between(angles[a as usize], angles[b as usize]);
+        (u128::from(total_order_bits(cost)) << 64) | (u128::from(a) << 32) | u128::from(b)
+    }));
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            let gp = parent[parent[v as usize] as usize];
-            parent[v as usize] = gp;
-            v = gp;
-        }
-        v
-    }
     let mut tree: Vec<(u32, u32)> = Vec::with_capacity(n.saturating_sub(1));
-    for &key in &order {
-        let (a, b) = ((key >> 32) as u32, key as u32);
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
-            tree.push((a, b));
-            if tree.len() + 1 == n {
-                break;
-            }
-        }
-    }
+    filter_kruskal(&mut order, &mut parent, &mut tree, n);
     drop(order);
     // Tree adjacency in compressed rows.
     let (start, adj) =
@@ -63,7 +41,7 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
     // Root of each tree: smallest |α|, lowest index on ties.
     let mut root_of = vec![u32::MAX; n];
     for v in 0..n as u32 {
-        let r = find(&mut parent, v) as usize;
+        let r = find_root(&mut parent, v) as usize;
         let best = root_of[r];
         if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
             root_of[r] = v;
@@ -87,6 +65,65 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         }
     }
     out
+}
+
+/// The root of `v`'s set in the union-find forest `parent` (path halving).
+fn find_root(parent: &mut [u32], mut v: u32) -> u32 {
+    while parent[v as usize] != v {
+        let gp = parent[parent[v as usize] as usize];
+        parent[v as usize] = gp;
+        v = gp;
+    }
+    v
+}
+
+/// Links below this many are sorted outright by [`filter_kruskal`].
+const FILTER_KRUSKAL_LEAF: usize = 512;
+
+/// Kruskal's spanning forest of `nodes` nodes over links given as keys `(cost bits, a, b)`
+/// (see [`consistent_angles`]), pushed onto `tree` in the order Kruskal accepts them, without
+/// sorting every link: Filter-Kruskal (Osipov, Sanders and Singler, 2009) splits the keys at
+/// their median, builds the forest of the lighter half, drops the heavier links whose ends it
+/// has already joined (most of them, on a mesh's rotation graph) and goes on with the rest.
+/// Links are accepted in the order a full sort gives, so the forest is the same. Returns
+/// whether the forest spans all nodes (then the rest of the links are not looked at).
+fn filter_kruskal(
+    keys: &mut [u128],
+    parent: &mut [u32],
+    tree: &mut Vec<(u32, u32)>,
+    nodes: usize,
+) -> bool {
+    if keys.len() <= FILTER_KRUSKAL_LEAF {
+        keys.sort_unstable();
+        for &key in keys.iter() {
+            let (a, b) = ((key >> 32) as u32, key as u32);
+            let (ra, rb) = (find_root(parent, a), find_root(parent, b));
+            if ra != rb {
+                parent[ra.max(rb) as usize] = ra.min(rb);
+                tree.push((a, b));
+                if tree.len() + 1 == nodes {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+    let mid = keys.len() / 2;
+    keys.select_nth_unstable(mid);
+    let (light, heavy) = keys.split_at_mut(mid + 1);
+    if filter_kruskal(light, parent, tree, nodes) {
+        return true;
+    }
+    let mut kept = 0;
+    for r in 0..heavy.len() {
+        let key = heavy[r];
+        let (a, b) = ((key >> 32) as u32, key as u32);
+        if find_root(parent, a) != find_root(parent, b) {
+            heavy[kept] = key;
+            kept += 1;
+        }
+    }
+    filter_kruskal(&mut heavy[..kept], parent, tree, nodes)
 }
 
 /// The bits of `x` as an unsigned integer that orders as [`f64::total_cmp`] orders the floats:
@@ -230,6 +267,45 @@ mod tests {
         let fixed = consistent_angles(&raw, &links);
         for (f, t) in fixed.iter().zip(&true_angles) {
             assert!((f - t).abs() < 1e-12, "{f} vs {t}");
+        }
+    }
+
+    /// Kruskal over fully sorted keys: what [`filter_kruskal`] must reproduce.
+    fn sorted_kruskal(keys: &mut [u128], nodes: usize) -> Vec<(u32, u32)> {
+        keys.sort_unstable();
+        let mut parent: Vec<u32> = (0..nodes as u32).collect();
+        let mut tree = Vec::new();
+        for &key in keys.iter() {
+            let (a, b) = ((key >> 32) as u32, key as u32);
+            let (ra, rb) = (find_root(&mut parent, a), find_root(&mut parent, b));
+            if ra != rb {
+                parent[ra.max(rb) as usize] = ra.min(rb);
+                tree.push((a, b));
+            }
+        }
+        tree
+    }
+
+    proptest::proptest! {
+        /// Filter-Kruskal accepts the same links in the same order as Kruskal over a full
+        /// sort, with costs drawn from few values (many ties) and graphs large enough to
+        /// split several times, disconnected ones included.
+        #[test]
+        fn filter_kruskal_builds_the_sorted_kruskal_forest(
+            nodes in 2usize..400,
+            raw in proptest::collection::vec((0u32..400, 0u32..400, 0u64..6), 0..3000),
+        ) {
+            let mut keys: Vec<u128> = raw
+                .iter()
+                .map(|&(a, b, c)| (a % nodes as u32, b % nodes as u32, c))
+                .filter(|(a, b, _)| a != b)
+                .map(|(a, b, c)| (u128::from(c) << 64) | (u128::from(a.min(b)) << 32) | u128::from(a.max(b)))
+                .collect();
+            let expected = sorted_kruskal(&mut keys.clone(), nodes);
+            let mut parent: Vec<u32> = (0..nodes as u32).collect();
+            let mut tree = Vec::new();
+            filter_kruskal(&mut keys, &mut parent, &mut tree, nodes);
+            proptest::prop_assert_eq!(tree, expected);
         }
     }
 
