@@ -201,49 +201,122 @@ impl Untangler {
 
     /// The position of `v` maximizing the smallest doubled signed area of its triangles, and that
     /// area; `None` when the linear program has no bounded vertex (a degenerate star).
+    ///
+    /// Every vertex of the program (three constraints tight) is tried, in order, and the highest
+    /// feasible one kept (the first of equals). A vertex's height `z` is solved for before its
+    /// position, which is only needed when `z` beats the best so far: most vertices stop there.
+    /// The arithmetic of each value is that of a full Cramer solve, so results do not depend on
+    /// the shortcut (issue 16: this is the composite walk's hottest loop).
     fn best_position(&self, v: usize, points: &[Point]) -> Option<(Point, f64)> {
-        // Doubled area of (v, a, b) = cross(a, b) + cross(v, a − b) = c + g·v.
-        let cons: Vec<(Point, f64)> = self.stars[v]
-            .iter()
-            .map(|&[a, b]| {
-                let (a, b) = (points[a as usize], points[b as usize]);
-                let d = a - b;
-                (Point::new(d.y, -d.x), a.perp_dot(b))
-            })
-            .collect();
-        // Work relative to the current position for conditioning.
+        // Doubled area of (v, a, b) = cross(a, b) + cross(v, a − b) = c + g·v, written relative
+        // to the current position `o` for conditioning: c + g·o + g·(v − o).
         let o = points[v];
-        let cons: Vec<(Point, f64)> = cons.iter().map(|&(g, c)| (g, c + g.dot(o))).collect();
-        let scale = cons
-            .iter()
-            .map(|(g, c)| g.length_squared().max(c.abs()))
-            .fold(0.0f64, f64::max);
+        let mut cons: Vec<Constraint> = Vec::with_capacity(self.stars[v].len());
+        let mut scale = 0.0f64;
+        for &[a, b] in &self.stars[v] {
+            let (a, b) = (points[a as usize], points[b as usize]);
+            let d = a - b;
+            let g = Point::new(d.y, -d.x);
+            let c = a.perp_dot(b) + g.dot(o);
+            scale = scale.max(g.length_squared().max(c.abs()));
+            cons.push(Constraint::new(g, c));
+        }
         if scale <= 0.0 || !scale.is_finite() {
             return None;
         }
         let eps = 1e-12 * scale;
         let mut best: Option<(Point, f64)> = None;
         let k = cons.len();
+        let mut cut = 0;
         for i in 0..k {
             for j in i + 1..k {
                 for l in j + 1..k {
                     // z − g·x = c for the three constraints: unknowns (x, y, z).
-                    let rows = [cons[i], cons[j], cons[l]];
-                    let m = rows.map(|(g, c)| [-g.x, -g.y, 1.0, c]);
-                    let Some((x, y, z)) = solve3(&m) else {
+                    let Some(vertex) = Vertex::new(&cons[i], &cons[j], &cons[l]) else {
                         continue;
                     };
-                    let p = Point::new(x, y);
-                    if best.is_none_or(|b| z > b.1)
-                        && cons.iter().all(|&(g, c)| z <= c + g.dot(p) + eps)
-                    {
-                        best = Some((p, z));
+                    let z = vertex.z();
+                    if best.is_some_and(|b| z <= b.1) || z.is_nan() {
+                        continue;
+                    }
+                    let p = vertex.position();
+                    let holds = |q: &Constraint| z <= q.c + q.g.dot(p) + eps;
+                    // The constraint that cut off the last vertex tried most often cuts off
+                    // this one too: tested first, it spares the scan.
+                    if !holds(&cons[cut]) {
+                        continue;
+                    }
+                    match cons.iter().position(|q| !holds(q)) {
+                        Some(c) => cut = c,
+                        None => best = Some((p, z)),
                     }
                 }
             }
         }
         best.map(|(p, z)| (o + p, z))
     }
+}
+
+/// One constraint `z ≤ c + g·x` of [`Untangler::best_position`], with its row `[−g, 1 | c]` of
+/// the 3 × 3 systems and the row's largest coefficient (for the singularity test).
+struct Constraint {
+    g: Point,
+    c: f64,
+    row: [f64; 4],
+    largest: f64,
+}
+
+impl Constraint {
+    fn new(g: Point, c: f64) -> Self {
+        let row = [-g.x, -g.y, 1.0, c];
+        Constraint {
+            g,
+            c,
+            row,
+            largest: row[0].abs().max(row[1].abs()).max(1.0),
+        }
+    }
+}
+
+/// The vertex where three constraints are tight, by Cramer's rule over the rows
+/// `[a, b, c | d]`: the system's determinant is checked once and the unknowns are solved for
+/// one at a time.
+struct Vertex<'a> {
+    m: [&'a [f64; 4]; 3],
+    det: f64,
+}
+
+impl<'a> Vertex<'a> {
+    /// `None` when the system is (nearly) singular.
+    fn new(r0: &'a Constraint, r1: &'a Constraint, r2: &'a Constraint) -> Option<Self> {
+        let m = [&r0.row, &r1.row, &r2.row];
+        let det = det3(&m, 0, 1, 2);
+        let norm = r0.largest.max(r1.largest).max(r2.largest);
+        if det.abs() <= 1e-12 * norm * norm * norm || !det.is_finite() {
+            return None;
+        }
+        Some(Vertex { m, det })
+    }
+
+    /// The third unknown: the smallest doubled area at the vertex.
+    fn z(&self) -> f64 {
+        det3(&self.m, 0, 1, 3) / self.det
+    }
+
+    /// The first two unknowns: the vertex's position.
+    fn position(&self) -> Point {
+        Point::new(
+            det3(&self.m, 3, 1, 2) / self.det,
+            det3(&self.m, 0, 3, 2) / self.det,
+        )
+    }
+}
+
+/// The determinant of columns `c0`, `c1`, `c2` of the three rows `m`, expanded along the first.
+fn det3(m: &[&[f64; 4]; 3], c0: usize, c1: usize, c2: usize) -> f64 {
+    m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1])
+        - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+        + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
 }
 
 /// A triangle whose quality fell below this fraction of its quality before the mapping is
@@ -263,25 +336,6 @@ fn quality(t: &[u32; 3], p: &[Point]) -> f64 {
     } else {
         0.0
     }
-}
-
-/// Solves the 3×3 system with augmented rows `[a, b, c | d]` by Cramer's rule; `None` when
-/// (nearly) singular.
-fn solve3(m: &[[f64; 4]; 3]) -> Option<(f64, f64, f64)> {
-    let det3 = |c0: usize, c1: usize, c2: usize| {
-        m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1])
-            - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
-            + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
-    };
-    let d = det3(0, 1, 2);
-    let norm = m
-        .iter()
-        .flat_map(|r| r[..3].iter())
-        .fold(0.0f64, |a, &x| a.max(x.abs()));
-    if d.abs() <= 1e-12 * norm * norm * norm || !d.is_finite() {
-        return None;
-    }
-    Some((det3(3, 1, 2) / d, det3(0, 3, 2) / d, det3(0, 1, 3) / d))
 }
 
 #[cfg(test)]
