@@ -255,12 +255,14 @@ fn merge_twin_steiner_points(
 
 /// Which faces are inside the boundary whose (counter-clockwise) edges are `boundary_edges`:
 /// a flood fill from the faces left of them that never crosses a boundary edge (feature edges
-/// are crossed freely).
+/// are crossed freely). The boundary's edges are flagged by handle first, so the fill tests a
+/// flag per edge rather than searching the set twice.
 fn inside_faces(
     cdt: &Cdt,
     boundary_edges: &BTreeSet<(usize, usize)>,
 ) -> Result<Vec<bool>, CdtError> {
     let mut inside = vec![false; cdt.num_all_faces()];
+    let mut on_boundary = vec![false; cdt.num_undirected_edges()];
     let mut stack = Vec::new();
     for &(a, b) in boundary_edges {
         let e = cdt
@@ -269,6 +271,7 @@ fn inside_faces(
                 FixedVertexHandle::from_index(b),
             )
             .ok_or_else(|| CdtError::Other("a boundary edge was split".into()))?;
+        on_boundary[e.as_undirected().fix().index()] = true;
         if let Some(f) = e.face().as_inner() {
             if !inside[f.fix().index()] {
                 inside[f.fix().index()] = true;
@@ -278,8 +281,7 @@ fn inside_faces(
     }
     while let Some(f) = stack.pop() {
         for e in cdt.face(f).adjacent_edges() {
-            let (a, b) = (e.from().fix().index(), e.to().fix().index());
-            if boundary_edges.contains(&(a, b)) || boundary_edges.contains(&(b, a)) {
+            if on_boundary[e.as_undirected().fix().index()] {
                 continue;
             }
             if let Some(g) = e.rev().face().as_inner() {
