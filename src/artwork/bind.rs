@@ -165,6 +165,15 @@ impl<'a> PointLocator<'a> {
     fn nearest(&self, p: Point) -> u32 {
         let (cx, cy) = self.cell_of(p);
         let mut best: Option<(f64, u32)> = None;
+        // A triangle whose bounding box is farther than the best distance by more than the
+        // rounding of either distance cannot win, so its distance is not computed. The margin
+        // is far above that rounding (a few ulps of the coordinates), so the choice is the one
+        // the full scan makes.
+        let scale = p
+            .abs()
+            .max(self.origin.abs())
+            .max(self.far.abs())
+            .max_element();
         let max_ring = self.nx.max(self.ny);
         for r in 0..=max_ring {
             let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(self.nx - 1));
@@ -175,6 +184,16 @@ impl<'a> PointLocator<'a> {
                         continue; // inner cells were searched in earlier rings
                     }
                     for &i in &self.cells[y * self.nx + x] {
+                        if let Some((bd, _)) = best {
+                            let [a, b, c] =
+                                self.triangles[i as usize].map(|v| self.points[v as usize]);
+                            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+                            let gap = (lo - p).max(p - hi).max(Point::ZERO);
+                            let reach = bd + 1e-9 * (bd + scale);
+                            if gap.length_squared() > reach * reach {
+                                continue;
+                            }
+                        }
                         let d = self.distance_to_triangle(p, i);
                         if best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
                             best = Some((d, i));
@@ -862,13 +881,20 @@ pub(crate) mod tests {
         #[test]
         fn the_nearest_triangle_is_the_brute_force_one(x in -300.0..400.0f64,
                                                        y in -300.0..400.0f64,
-                                                       far in proptest::bool::ANY) {
+                                                       far in proptest::bool::ANY,
+                                                       shifted in proptest::bool::ANY) {
             // Points in the empty middle of the grid and far outside it, where the ring
             // search stops on the strips of the grid beyond its rings: the same triangle as
-            // trying every one (the lowest index among equals).
-            let (pts, tris) = two_islands();
+            // trying every one (the lowest index among equals), also where the coordinates
+            // are large against the distances (the search skips triangles by their boxes
+            // with a margin for rounding).
+            let (mut pts, tris) = two_islands();
+            let offset = if shifted { Point::new(3.0e7, -1.0e7) } else { Point::ZERO };
+            for q in &mut pts {
+                *q += offset;
+            }
             let loc = PointLocator::new(&pts, &tris).unwrap();
-            let p = Point::new(x, y) * if far { 40.0 } else { 1.0 };
+            let p = Point::new(x, y) * if far { 40.0 } else { 1.0 } + offset;
             let l = loc.locate(p);
             let brute = (0..tris.len() as u32)
                 .map(|i| (loc.distance_to_triangle(p, i), i))
