@@ -45,8 +45,11 @@ pub struct PointLocator<'a> {
     cell: f64,
     nx: usize,
     ny: usize,
-    /// Triangle indices per cell (row-major), ascending.
-    cells: Vec<Vec<u32>>,
+    /// Triangle indices per cell (row-major), ascending: cell `k`'s are
+    /// `cell_triangles[cell_start[k]..cell_start[k + 1]]` (one allocation for the grid, not one
+    /// per cell: a locator is made per part and per binding).
+    cell_start: Vec<usize>,
+    cell_triangles: Vec<u32>,
 }
 
 impl<'a> PointLocator<'a> {
@@ -95,7 +98,6 @@ impl<'a> PointLocator<'a> {
             .max(ext.max_element() / 1024.0);
         let nx = ((ext.x / cell).ceil() as usize).clamp(1, 1024);
         let ny = ((ext.y / cell).ceil() as usize).clamp(1, 1024);
-        let mut cells = vec![Vec::new(); nx * ny];
         let mut me = PointLocator {
             points,
             triangles,
@@ -104,20 +106,50 @@ impl<'a> PointLocator<'a> {
             cell,
             nx,
             ny,
-            cells: Vec::new(),
+            cell_start: Vec::new(),
+            cell_triangles: Vec::new(),
         };
-        for &i in &usable {
-            let [a, b, c] = triangles[i as usize].map(|v| points[v as usize]);
-            let (x0, y0) = me.cell_of(a.min(b).min(c));
-            let (x1, y1) = me.cell_of(a.max(b).max(c));
+        // Each triangle's range of cells, counted, then filled in triangle order.
+        let ranges: Vec<[usize; 4]> = usable
+            .iter()
+            .map(|&i| {
+                let [a, b, c] = triangles[i as usize].map(|v| points[v as usize]);
+                let (x0, y0) = me.cell_of(a.min(b).min(c));
+                let (x1, y1) = me.cell_of(a.max(b).max(c));
+                [x0, y0, x1, y1]
+            })
+            .collect();
+        let mut start = vec![0usize; nx * ny + 1];
+        for &[x0, y0, x1, y1] in &ranges {
             for y in y0..=y1 {
                 for x in x0..=x1 {
-                    cells[y * nx + x].push(i);
+                    start[y * nx + x + 1] += 1;
                 }
             }
         }
-        me.cells = cells;
+        for k in 0..nx * ny {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; start[nx * ny]];
+        for (&i, &[x0, y0, x1, y1]) in usable.iter().zip(&ranges) {
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let slot = &mut fill[y * nx + x];
+                    items[*slot] = i;
+                    *slot += 1;
+                }
+            }
+        }
+        me.cell_start = start;
+        me.cell_triangles = items;
         Ok(me)
+    }
+
+    /// The triangles of grid cell `(x, y)`, ascending.
+    fn cell(&self, x: usize, y: usize) -> &[u32] {
+        let k = y * self.nx + x;
+        &self.cell_triangles[self.cell_start[k]..self.cell_start[k + 1]]
     }
 
     /// The grid cell containing `p`, clamped to the grid.
@@ -140,7 +172,7 @@ impl<'a> PointLocator<'a> {
     /// with barycentric coordinates clamped to be non-negative.
     pub fn containing(&self, p: Point) -> Option<Location> {
         let (cx, cy) = self.cell_of(p);
-        for &i in &self.cells[cy * self.nx + cx] {
+        for &i in self.cell(cx, cy) {
             let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
             let s = orient2d(a, b, c).signum();
             if orient2d(a, b, p) * s >= 0.0
@@ -183,7 +215,7 @@ impl<'a> PointLocator<'a> {
                     if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
                         continue; // inner cells were searched in earlier rings
                     }
-                    for &i in &self.cells[y * self.nx + x] {
+                    for &i in self.cell(x, y) {
                         if let Some((bd, _)) = best {
                             let [a, b, c] =
                                 self.triangles[i as usize].map(|v| self.points[v as usize]);
