@@ -202,11 +202,14 @@ impl Untangler {
     /// The position of `v` maximizing the smallest doubled signed area of its triangles, and that
     /// area; `None` when the linear program has no bounded vertex (a degenerate star).
     ///
-    /// Every vertex of the program (three constraints tight) is tried, in order, and the highest
-    /// feasible one kept (the first of equals). A vertex's height `z` is solved for before its
-    /// position, which is only needed when `z` beats the best so far: most vertices stop there.
-    /// The arithmetic of each value is that of a full Cramer solve, so results do not depend on
-    /// the shortcut (issue 16: this is the composite walk's hottest loop).
+    /// Every vertex of the program (three constraints tight, solved by Cramer's rule) is tried
+    /// and the highest feasible one kept, the first in the order `(i, j, l)` among equals. The
+    /// 2 × 2 minors of a pair of constraints `(j, l)` are shared by every `i < j`, so pairs are
+    /// the outer loop; a vertex's height `z` is solved for before its position, which is only
+    /// needed when `z` can win. Each value is computed with the operations of the full 3 × 3
+    /// Cramer solve (the systems' third column is all ones, and `x · 1 = x` exactly), so the
+    /// result does not depend on these shortcuts (issue 16: this is the composite walk's hottest
+    /// loop).
     fn best_position(&self, v: usize, points: &[Point]) -> Option<(Point, f64)> {
         // Doubled area of (v, a, b) = cross(a, b) + cross(v, a − b) = c + g·v, written relative
         // to the current position `o` for conditioning: c + g·o + g·(v − o).
@@ -225,21 +228,39 @@ impl Untangler {
             return None;
         }
         let eps = 1e-12 * scale;
-        let mut best: Option<(Point, f64)> = None;
+        // The best vertex: its position, height and constraints.
+        let mut best: Option<(Point, f64, [usize; 3])> = None;
         let k = cons.len();
         let mut cut = 0;
-        for i in 0..k {
-            for j in i + 1..k {
-                for l in j + 1..k {
-                    // z − g·x = c for the three constraints: unknowns (x, y, z).
-                    let Some(vertex) = Vertex::new(&cons[i], &cons[j], &cons[l]) else {
-                        continue;
-                    };
-                    let z = vertex.z();
-                    if best.is_some_and(|b| z <= b.1) || z.is_nan() {
+        for j in 1..k {
+            for l in j + 1..k {
+                let (r1, r2) = (&cons[j], &cons[l]);
+                // The rows are [a, b, 1 | c]; the minors of rows j and l.
+                let pair = Pair {
+                    b: r1.b - r2.b,
+                    a: r1.a - r2.a,
+                    ab: r1.a * r2.b - r1.b * r2.a,
+                    bc: r1.b * r2.c - r1.c * r2.b,
+                    ac: r1.a * r2.c - r1.c * r2.a,
+                    largest: r1.largest.max(r2.largest),
+                };
+                for i in 0..j {
+                    let r0 = &cons[i];
+                    let det = r0.a * pair.b - r0.b * pair.a + pair.ab;
+                    let norm = r0.largest.max(pair.largest);
+                    if det.abs() <= 1e-12 * norm * norm * norm || !det.is_finite() {
                         continue;
                     }
-                    let p = vertex.position();
+                    let z = (r0.a * pair.bc - r0.b * pair.ac + r0.c * pair.ab) / det;
+                    let order = [i, j, l];
+                    let loses = |b: &(Point, f64, [usize; 3])| z < b.1 || (z == b.1 && order > b.2);
+                    if z.is_nan() || best.as_ref().is_some_and(loses) {
+                        continue;
+                    }
+                    let p = Point::new(
+                        (r0.c * pair.b - r0.b * (r1.c - r2.c) + (r1.c * r2.b - r1.b * r2.c)) / det,
+                        (r0.a * (r1.c - r2.c) - r0.c * pair.a + pair.ac) / det,
+                    );
                     let holds = |q: &Constraint| z <= q.c + q.g.dot(p) + eps;
                     // The constraint that cut off the last vertex tried most often cuts off
                     // this one too: tested first, it spares the scan.
@@ -248,75 +269,54 @@ impl Untangler {
                     }
                     match cons.iter().position(|q| !holds(q)) {
                         Some(c) => cut = c,
-                        None => best = Some((p, z)),
+                        None => best = Some((p, z, order)),
                     }
                 }
             }
         }
-        best.map(|(p, z)| (o + p, z))
+        best.map(|(p, z, _)| (o + p, z))
     }
 }
 
-/// One constraint `z ≤ c + g·x` of [`Untangler::best_position`], with its row `[−g, 1 | c]` of
-/// the 3 × 3 systems and the row's largest coefficient (for the singularity test).
+/// One constraint `z ≤ c + g·x` of [`Untangler::best_position`]: its row `[a, b, 1 | c]` =
+/// `[−g, 1 | c]` of the 3 × 3 systems and the row's largest coefficient (for the singularity
+/// test).
 struct Constraint {
     g: Point,
+    a: f64,
+    b: f64,
     c: f64,
-    row: [f64; 4],
     largest: f64,
 }
 
 impl Constraint {
     fn new(g: Point, c: f64) -> Self {
-        let row = [-g.x, -g.y, 1.0, c];
+        let (a, b) = (-g.x, -g.y);
         Constraint {
             g,
+            a,
+            b,
             c,
-            row,
-            largest: row[0].abs().max(row[1].abs()).max(1.0),
+            largest: a.abs().max(b.abs()).max(1.0),
         }
     }
 }
 
-/// The vertex where three constraints are tight, by Cramer's rule over the rows
-/// `[a, b, c | d]`: the system's determinant is checked once and the unknowns are solved for
-/// one at a time.
-struct Vertex<'a> {
-    m: [&'a [f64; 4]; 3],
-    det: f64,
-}
-
-impl<'a> Vertex<'a> {
-    /// `None` when the system is (nearly) singular.
-    fn new(r0: &'a Constraint, r1: &'a Constraint, r2: &'a Constraint) -> Option<Self> {
-        let m = [&r0.row, &r1.row, &r2.row];
-        let det = det3(&m, 0, 1, 2);
-        let norm = r0.largest.max(r1.largest).max(r2.largest);
-        if det.abs() <= 1e-12 * norm * norm * norm || !det.is_finite() {
-            return None;
-        }
-        Some(Vertex { m, det })
-    }
-
-    /// The third unknown: the smallest doubled area at the vertex.
-    fn z(&self) -> f64 {
-        det3(&self.m, 0, 1, 3) / self.det
-    }
-
-    /// The first two unknowns: the vertex's position.
-    fn position(&self) -> Point {
-        Point::new(
-            det3(&self.m, 3, 1, 2) / self.det,
-            det3(&self.m, 0, 3, 2) / self.det,
-        )
-    }
-}
-
-/// The determinant of columns `c0`, `c1`, `c2` of the three rows `m`, expanded along the first.
-fn det3(m: &[&[f64; 4]; 3], c0: usize, c1: usize, c2: usize) -> f64 {
-    m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1])
-        - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
-        + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+/// The 2 × 2 minors of the rows of two constraints, `[a₁, b₁, 1 | c₁]` and `[a₂, b₂, 1 | c₂]`,
+/// that Cramer's rule expands every third row against.
+struct Pair {
+    /// `b₁ − b₂`.
+    b: f64,
+    /// `a₁ − a₂`.
+    a: f64,
+    /// `a₁b₂ − b₁a₂`.
+    ab: f64,
+    /// `b₁c₂ − c₁b₂`.
+    bc: f64,
+    /// `a₁c₂ − c₁a₂`.
+    ac: f64,
+    /// The larger of the two rows' largest coefficients.
+    largest: f64,
 }
 
 /// A triangle whose quality fell below this fraction of its quality before the mapping is
@@ -348,6 +348,96 @@ mod tests {
     }
 
     /// A square fan around a centre vertex 4, corners fixed.
+    /// The local program solved as it was before issue 16: every vertex by a full 3 × 3
+    /// Cramer solve, in the order `(i, j, l)`, the first of the highest feasible ones kept.
+    fn best_position_reference(
+        stars: &[[u32; 2]],
+        o: Point,
+        points: &[Point],
+    ) -> Option<(Point, f64)> {
+        let cons: Vec<(Point, f64)> = stars
+            .iter()
+            .map(|&[a, b]| {
+                let (a, b) = (points[a as usize], points[b as usize]);
+                let d = a - b;
+                let g = Point::new(d.y, -d.x);
+                (g, a.perp_dot(b) + g.dot(o))
+            })
+            .collect();
+        let scale = cons
+            .iter()
+            .map(|(g, c)| g.length_squared().max(c.abs()))
+            .fold(0.0f64, f64::max);
+        if scale <= 0.0 || !scale.is_finite() {
+            return None;
+        }
+        let eps = 1e-12 * scale;
+        let solve3 = |m: &[[f64; 4]; 3]| -> Option<(f64, f64, f64)> {
+            let det3 = |c0: usize, c1: usize, c2: usize| {
+                m[0][c0] * (m[1][c1] * m[2][c2] - m[1][c2] * m[2][c1])
+                    - m[0][c1] * (m[1][c0] * m[2][c2] - m[1][c2] * m[2][c0])
+                    + m[0][c2] * (m[1][c0] * m[2][c1] - m[1][c1] * m[2][c0])
+            };
+            let d = det3(0, 1, 2);
+            let norm = m
+                .iter()
+                .flat_map(|r| r[..3].iter())
+                .fold(0.0f64, |a, &x| a.max(x.abs()));
+            if d.abs() <= 1e-12 * norm * norm * norm || !d.is_finite() {
+                return None;
+            }
+            Some((det3(3, 1, 2) / d, det3(0, 3, 2) / d, det3(0, 1, 3) / d))
+        };
+        let mut best: Option<(Point, f64)> = None;
+        let k = cons.len();
+        for i in 0..k {
+            for j in i + 1..k {
+                for l in j + 1..k {
+                    let m = [cons[i], cons[j], cons[l]].map(|(g, c)| [-g.x, -g.y, 1.0, c]);
+                    let Some((x, y, z)) = solve3(&m) else {
+                        continue;
+                    };
+                    let p = Point::new(x, y);
+                    if best.is_none_or(|b| z > b.1)
+                        && cons.iter().all(|&(g, c)| z <= c + g.dot(p) + eps)
+                    {
+                        best = Some((p, z));
+                    }
+                }
+            }
+        }
+        best.map(|(p, z)| (o + p, z))
+    }
+
+    proptest::proptest! {
+        /// The program's answer is bit for bit the full Cramer enumeration's, on stars of 3 to
+        /// 11 triangles whose points sit on a coarse grid (so ties, repeated points and
+        /// singular systems are common) or anywhere.
+        #[test]
+        fn best_position_is_the_full_enumerations(
+            ring in proptest::collection::vec((-4i32..5, -4i32..5), 3..12),
+            centre in (-4i32..5, -4i32..5),
+            jitter in proptest::collection::vec(-1.0f64..1.0, 24),
+            coarse in proptest::bool::ANY,
+        ) {
+            let k = ring.len();
+            let mut pts = vec![Point::new(f64::from(centre.0), f64::from(centre.1))];
+            for (m, &(x, y)) in ring.iter().enumerate() {
+                let (dx, dy) = if coarse { (0.0, 0.0) } else { (jitter[2 * m], jitter[2 * m + 1]) };
+                pts.push(Point::new(f64::from(x) + dx, f64::from(y) + dy));
+            }
+            let tris: Vec<[u32; 3]> = (0..k as u32).map(|m| [0, 1 + m, 1 + (m + 1) % k as u32]).collect();
+            let mut fixed = vec![true; k + 1];
+            fixed[0] = false;
+            let u = Untangler::new(&tris, &fixed);
+            let bits = |r: Option<(Point, f64)>| r.map(|(p, z)| (p.x.to_bits(), p.y.to_bits(), z.to_bits()));
+            proptest::prop_assert_eq!(
+                bits(u.best_position(0, &pts)),
+                bits(best_position_reference(&u.stars[0], pts[0], &pts))
+            );
+        }
+    }
+
     fn fan() -> (Vec<[u32; 3]>, Vec<bool>) {
         let tris = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
         (tris, vec![true, true, true, true, false])
