@@ -35,6 +35,9 @@ pub(crate) struct FoldRepair {
     /// convex rim re-embeds without a fold (Floater's theorem), and similarity-invariant, so
     /// that it keeps the rest shape where the rim allows.
     weights: Vec<Vec<f64>>,
+    /// Per vertex: the sum of its `weights`, added in `ring` order (what every sweep of a
+    /// re-embedding divides by).
+    weight_sums: Vec<f64>,
     /// Whether curve vertices may move as a last resort (an interpolation's frames; not a
     /// mesh whose held vertices are its correspondence).
     curves_may_move: bool,
@@ -56,11 +59,15 @@ impl FoldRepair {
     ) -> Self {
         let star = crate::mesh::stars(triangles, n);
         let ring = crate::mesh::one_rings(triangles, n);
-        let weights = (0..n)
+        let weights: Vec<Vec<f64>> = (0..n)
             .map(|v| match rest {
                 Some(r) if r.len() == n => mean_value_weights(v, &ring[v], &star[v], triangles, r),
                 _ => vec![1.0; ring[v].len()],
             })
+            .collect();
+        let weight_sums = weights
+            .iter()
+            .map(|w| w.iter().fold(0.0, |total, &k| total + k))
             .collect();
         FoldRepair {
             triangles: triangles.to_vec(),
@@ -70,6 +77,7 @@ impl FoldRepair {
             star,
             ring,
             weights,
+            weight_sums,
             curves_may_move,
         }
     }
@@ -162,20 +170,22 @@ impl FoldRepair {
                 .map(|(v, w)| out[v].distance(out[w]))
                 .fold(0.0, f64::max);
             for _ in 0..SWEEPS {
-                let mut shift = 0.0f64;
+                // The largest squared move: its root is the largest move (the root is
+                // monotonic and correctly rounded), taken once per sweep, not once per vertex.
+                let mut shift2 = 0.0f64;
                 for &v in &movable {
-                    let (mut sum, mut total) = (Point::ZERO, 0.0);
-                    for (&w, &k) in self.ring[v].iter().zip(&self.weights[v]) {
-                        sum += out[w as usize] * k;
-                        total += k;
-                    }
+                    let total = self.weight_sums[v];
                     if total > 0.0 {
+                        let mut sum = Point::ZERO;
+                        for (&w, &k) in self.ring[v].iter().zip(&self.weights[v]) {
+                            sum += out[w as usize] * k;
+                        }
                         let p = sum / total;
-                        shift = shift.max(p.distance(out[v]));
+                        shift2 = shift2.max((p - out[v]).length_squared());
                         out[v] = p;
                     }
                 }
-                if shift <= 1e-9 * scale {
+                if shift2.sqrt() <= 1e-9 * scale {
                     break;
                 }
             }
