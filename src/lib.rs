@@ -71,6 +71,7 @@ pub mod mesh;
 pub mod morpher;
 pub mod morphing;
 mod number;
+mod parallel;
 pub mod quality;
 pub mod render;
 pub mod rigid;

@@ -37,7 +37,6 @@ use crate::error::Result;
 use crate::geometry::Point;
 use contours::{contours, Contour, ContourKind};
 use part::{build_part, PartInputs, PartMesh, PartPlan, Rung};
-use rayon::prelude::*;
 
 /// Shape pairs the report names before it counts the rest.
 const SHOWN: usize = 6;
@@ -254,10 +253,15 @@ pub fn build_auto(
         step,
         figure_turn: figure_turn(&plans, &cs, &ct, diagonal),
     };
-    let built: Vec<Result<PartMesh>> = plans
-        .par_iter()
-        .map(|plan| build_part(plan, &cs, &ct, &inputs))
-        .collect();
+    // A part's set-up (triangulation, mapping, fold checks) takes milliseconds even for a
+    // small shape: two parts are worth rayon's threads, one alone is not.
+    let work = if plans.len() > 1 {
+        crate::parallel::MIN_WORK
+    } else {
+        0
+    };
+    let built: Vec<Result<PartMesh>> =
+        crate::parallel::map(&plans, work, |plan| build_part(plan, &cs, &ct, &inputs));
     // A pair whose outlines cannot even be corresponded (degenerate) is not a pair: its shapes
     // grow and shrink instead.
     let mut parts = Vec::with_capacity(built.len());

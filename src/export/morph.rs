@@ -271,19 +271,28 @@ impl Morph {
         self.frame_of(&self.vertices_at(t), t, true)
     }
 
-    /// The keyframes at `ts` ([`Morph::keyframe_at`]), solved and warped in parallel, each
-    /// reported to the [`Morph::on_frame`] hook.
+    /// The keyframes at `ts` ([`Morph::keyframe_at`]), solved and warped in parallel when
+    /// there is enough work ([`crate::parallel`]), each reported to the [`Morph::on_frame`]
+    /// hook.
     pub fn keyframes_at(&self, ts: &[f64]) -> Result<Vec<Frame>> {
         let meshes = self.motion.frames(ts);
-        meshes
-            .par_iter()
-            .zip(ts)
-            .map(|(v, &t)| {
-                let frame = self.frame_of(v, t, true);
-                self.frame_done();
-                frame
-            })
-            .collect()
+        let items: Vec<(&Vec<Point>, f64)> = meshes.iter().zip(ts.iter().copied()).collect();
+        let work = ts.len().saturating_mul(self.frame_work());
+        crate::parallel::map(&items, work, |&(v, t)| {
+            let frame = self.frame_of(v, t, true);
+            self.frame_done();
+            frame
+        })
+        .into_iter()
+        .collect()
+    }
+
+    /// The work of one frame in [`crate::parallel`]'s units: the mesh's vertices solved and
+    /// both drawings' bound points warped.
+    fn frame_work(&self) -> usize {
+        self.meshes.source.len()
+            + self.artwork.source.point_count()
+            + self.artwork.target.point_count()
     }
 
     /// The box of what the frames at `ts` draw, both drawings' warped artwork where the
@@ -476,10 +485,10 @@ impl Morph {
         let trees = |frames: &[usize]| -> Result<Vec<Node>> {
             let times: Vec<f64> = frames.iter().map(|&i| ts[i]).collect();
             let keyframes = self.keyframes_at(&times)?;
-            Ok(keyframes
-                .par_iter()
-                .map(|f| frame_tree(&layers_of(f), f.t, &self.frame, Mode::Keyframe))
-                .collect())
+            let work = keyframes.len().saturating_mul(self.frame_work());
+            Ok(crate::parallel::map(&keyframes, work, |f| {
+                frame_tree(&layers_of(f), f.t, &self.frame, Mode::Keyframe)
+            }))
         };
         // The static values (what a viewer without SMIL shows) are the source drawing exactly.
         let first = self.motion.frames(&ts[..1]);

@@ -129,6 +129,7 @@ pub(crate) fn write_animated_svg<W: std::io::Write>(
         tol: opts.flatten_tolerance(),
         timing: timing(&timeline),
         key_decimals: (order.len() as f64).log10().ceil() as usize + 2,
+        parallel: crate::parallel::worth(order.len().saturating_mul(slot_points(&packed[0]))),
         order,
     };
     // A base of another structure (it should not happen) is ignored, not an error.
@@ -248,6 +249,18 @@ fn pack(tree: &Node, first: &Node, out: &mut Vec<Slot>) -> Result<()> {
 }
 
 /// Attribute values in a subtree (the slots [`pack`] makes of it).
+/// The points of one keyframe's packed values (a path's points, one for any other value): the
+/// merge's work per keyframe.
+fn slot_points(slots: &[Slot]) -> usize {
+    slots
+        .iter()
+        .map(|s| match s {
+            Slot::Path { coords, .. } => coords.len() / 2,
+            Slot::Other(_) => 1,
+        })
+        .sum()
+}
+
 fn slot_count(node: &Node) -> usize {
     node.attrs.len() + node.children.iter().map(slot_count).sum::<usize>()
 }
@@ -274,6 +287,9 @@ struct Context {
     key_decimals: usize,
     /// The keyframes in playback order (indices of frames).
     order: Vec<usize>,
+    /// Whether elements' children are merged on rayon's threads: when the whole merge is worth
+    /// it ([`crate::parallel`]).
+    parallel: bool,
 }
 
 fn timing(tl: &Timeline) -> Vec<(&'static str, Value)> {
@@ -326,18 +342,23 @@ fn merge(
         starts.push(next);
         next += slot_count(c);
     }
-    let children: Vec<Node> = (0..node.children.len())
-        .into_par_iter()
-        .map(|ci| {
-            merge(
-                &node.children[ci],
-                starts[ci],
-                packed,
-                base.map(|b| &b.children[ci]),
-                ctx,
-            )
-        })
-        .collect::<Result<_>>()?;
+    let child = |ci: usize| {
+        merge(
+            &node.children[ci],
+            starts[ci],
+            packed,
+            base.map(|b| &b.children[ci]),
+            ctx,
+        )
+    };
+    let children: Vec<Node> = if ctx.parallel {
+        (0..node.children.len())
+            .into_par_iter()
+            .map(child)
+            .collect::<Result<_>>()?
+    } else {
+        (0..node.children.len()).map(child).collect::<Result<_>>()?
+    };
     out.children = children;
     out.children.extend(animations);
     Ok(out)

@@ -29,7 +29,6 @@ mod triangle;
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 pub(crate) use disc::{DiscRigid, ExtraRow, FrameScratch};
-use rayon::prelude::*;
 use triangle::TriangleRigid;
 
 /// A polyline of points whose consecutive points are each other's disc neighbours: a curve
@@ -341,8 +340,8 @@ impl Interpolator {
         out
     }
 
-    /// Many frames in parallel (rayon), one workspace per worker: `frames[k]` is the frame at
-    /// `ts[k]`.
+    /// Many frames, in parallel (rayon) when there is enough work ([`crate::parallel`]), one
+    /// workspace per worker: `frames[k]` is the frame at `ts[k]`.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
         parallel_frames(
             ts,
@@ -378,22 +377,21 @@ impl Interpolator {
     }
 }
 
-/// Frames at every `t` of `ts` in parallel (rayon), each worker with its own workspace from
-/// `workspace`: `at(t, out, ws)` fills a frame of `n` points. Shared by every precompute-then-
-/// apply motion (the interpolator, skeleton control).
+/// Frames at every `t` of `ts`, in parallel when there is enough work
+/// ([`crate::parallel`]), each worker with its own workspace from `workspace`:
+/// `at(t, out, ws)` fills a frame of `n` points. Shared by every precompute-then-apply motion
+/// (the interpolator, skeleton control).
 pub(crate) fn parallel_frames<W>(
     ts: &[f64],
     n: usize,
     workspace: impl Fn() -> W + Sync + Send,
     at: impl Fn(f64, &mut [Point], &mut W) + Sync + Send,
 ) -> Vec<Vec<Point>> {
-    ts.par_iter()
-        .map_init(&workspace, |ws, &t| {
-            let mut out = vec![Point::ZERO; n];
-            at(t, &mut out, ws);
-            out
-        })
-        .collect()
+    crate::parallel::map_init(ts, ts.len().saturating_mul(n), workspace, |ws, &t| {
+        let mut out = vec![Point::ZERO; n];
+        at(t, &mut out, ws);
+        out
+    })
 }
 
 #[cfg(test)]

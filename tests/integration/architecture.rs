@@ -14,6 +14,7 @@ const LAYERS: &[&str] = &[
     "tolerance",
     "base64",
     "number",
+    "parallel",
     "mesh",
     "input",
     "budget",
