@@ -36,7 +36,7 @@ use super::area::AreaRule;
 use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
 };
-use super::rotation::consistent_angles;
+use super::rotation::consistent_angles_lazy;
 use super::sincos::sin_cos_many;
 use super::Repair;
 use crate::error::{Error, Result};
@@ -377,7 +377,7 @@ impl DiscRigid {
     ) -> Result<Self> {
         let local = LocalTransforms::new(source, target, discs)?;
         let n = source.len();
-        let alpha = consistent_angles(&local.alpha, &local.rotation_links(n));
+        let alpha = consistent_angles_lazy(&local.alpha, || local.rotation_links(n));
         let mut builder = SystemBuilder::new(n);
         for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
             builder.add_edge(i, j, w);

@@ -19,8 +19,32 @@ use std::f64::consts::{PI, TAU};
 /// Kruskal's minimum spanning forest under cost `|α_a − α_b|` (ties broken by the link's node
 /// indices, so the result is deterministic), then an iterative depth-first traversal from each
 /// tree's node of smallest `|α|` (ties: lowest index) correcting each child by the multiple of 2π
-/// that brings it within π of its parent.
+/// that brings it within π of its parent. Angles all within a half turn of each other are
+/// handed back as they are, without the forest: no child would move ([`within_half_turn`]).
 pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64> {
+    if within_half_turn(angles) {
+        return angles.to_vec();
+    }
+    along_spanning_forest(angles, links)
+}
+
+/// [`consistent_angles`] with the links made by `links` only when they are needed (not for
+/// angles within a half turn): the disc method's rotation graph has about five links per
+/// mesh edge.
+pub(crate) fn consistent_angles_lazy(
+    angles: &[f64],
+    links: impl FnOnce() -> Vec<(u32, u32)>,
+) -> Vec<f64> {
+    if within_half_turn(angles) {
+        // No two angles are π apart, so no child is ever shifted, whatever the tree: the
+        // traversal would hand back the angles as they are.
+        return angles.to_vec();
+    }
+    along_spanning_forest(angles, &links())
+}
+
+/// [`consistent_angles`] by its definition: the spanning forest and the traversal.
+fn along_spanning_forest(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64> {
     let n = angles.len();
     // Kruskal: links in order of cost (in `f64::total_cmp`'s order), then of node indices, as
     // one integer key each: ordering plain integers is several times faster than comparing
@@ -65,6 +89,24 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
         }
     }
     out
+}
+
+/// Whether all of `angles` lie within an interval shorter than π: then every difference
+/// `α_parent − α_child` that [`nearest_branch`] computes is below π in magnitude as well
+/// (rounding is monotone, so no computed difference exceeds the computed `max − min`), and
+/// [`consistent_angles`] changes nothing. The common case: a shape that turns less than a
+/// half turn, with its local rotations spread over less than π.
+fn within_half_turn(angles: &[f64]) -> bool {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &a in angles {
+        if a.is_nan() {
+            return false;
+        }
+        lo = lo.min(a);
+        hi = hi.max(a);
+    }
+    // An infinite angle takes the full algorithm (∞ − x is not below π).
+    hi - lo < PI
 }
 
 /// The root of `v`'s set in the union-find forest `parent` (path halving).
@@ -307,6 +349,43 @@ mod tests {
             filter_kruskal(&mut keys, &mut parent, &mut tree, nodes);
             proptest::prop_assert_eq!(tree, expected);
         }
+
+        /// Angles spread over less than a half turn come out of the spanning forest and its
+        /// traversal unchanged, bit for bit, so [`consistent_angles`] may skip both. The band
+        /// is drawn up to just below π wide (and anywhere on the circle, across ±π too), on
+        /// random graphs; a band a little wider than π makes some child move, so the test
+        /// would see a shortcut taken too early.
+        #[test]
+        fn angles_within_a_half_turn_need_no_forest(
+            centre in -4.0f64..4.0,
+            width in 0.0f64..1.0,
+            spread in proptest::collection::vec(0.0f64..=1.0, 2..200),
+            raw in proptest::collection::vec((0u32..200, 0u32..200), 0..800),
+        ) {
+            let width = width * PI * (1.0 - 1e-12);
+            let angles: Vec<f64> = spread.iter().map(|&u| centre - width / 2.0 + u * width).collect();
+            let n = angles.len() as u32;
+            let links: Vec<(u32, u32)> = raw.iter().map(|&(a, b)| (a % n, b % n)).collect();
+            proptest::prop_assert!(within_half_turn(&angles));
+            let full = along_spanning_forest(&angles, &links);
+            proptest::prop_assert_eq!(
+                full.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
+                angles.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
+            );
+            proptest::prop_assert_eq!(consistent_angles(&angles, &links), full);
+        }
+    }
+
+    #[test]
+    fn a_band_of_a_half_turn_or_more_takes_the_forest() {
+        // Two linked angles π + 0.1 apart: the child moves to the other branch.
+        let angles = [-1.6, 1.6];
+        assert!(!within_half_turn(&angles));
+        let fixed = consistent_angles(&angles, &[(0, 1)]);
+        assert_eq!(fixed[0], -1.6);
+        assert!((fixed[1] - (1.6 - TAU)).abs() < 1e-15);
+        assert!(!within_half_turn(&[0.0, f64::NAN]));
+        assert!(!within_half_turn(&[0.0, f64::INFINITY]));
     }
 
     #[test]
