@@ -46,6 +46,25 @@ pub struct Harmonic {
     values: Vec<f64>,
     weights: Vec<f64>,
     rhs: Mat<f64>,
+    /// The last [`Harmonic::solve`]'s metric, its final weights and factor: a composite-map
+    /// step that is rejected is retried, shorter, from the same mesh, so the same matrix.
+    last: Option<Box<Factored>>,
+}
+
+/// A metric's weights (after any clamping) and its numeric factor, kept for the next solve.
+#[derive(Debug, Clone)]
+struct Factored {
+    metric: Vec<Point>,
+    weights: Vec<f64>,
+    llt: Llt<usize, f64>,
+}
+
+/// Whether two metrics are the same, bit for bit (so their weights and factor are too).
+fn same_metric(a: &[Point], b: &[Point]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
 }
 
 impl Harmonic {
@@ -133,6 +152,7 @@ impl Harmonic {
             symbolic,
             values: vec![0.0; nnz],
             rhs: Mat::zeros(nf, 2),
+            last: None,
         })
     }
 
@@ -153,7 +173,17 @@ impl Harmonic {
     /// Computes the harmonic map with the cotangent weights of `metric` (the current vertex
     /// positions): fixed entries of `out` are read as the prescribed positions, free entries are
     /// overwritten with the solution.
+    /// The metric's weights and factor are kept: solving again with the same metric (bit for
+    /// bit) and other fixed positions only solves.
     pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+        if let Some(last) = self.last.take() {
+            if same_metric(&last.metric, metric) && out.len() == metric.len() {
+                self.weights.copy_from_slice(&last.weights);
+                let done = self.finish(&last.llt, out);
+                self.last = Some(last);
+                return done;
+            }
+        }
         let Some(symbolic) = self.weigh(metric, out)? else {
             return Ok(());
         };
@@ -162,18 +192,27 @@ impl Harmonic {
                 "harmonic map: degenerate triangle in the metric",
             ));
         }
-        if let Some(llt) = self.factor(&symbolic, None) {
-            return self.finish(&llt, out);
-        }
-        // Numerically indefinite: clamp to a positive floor (a convex-combination map).
-        let mean =
-            self.weights.iter().map(|w| w.abs()).sum::<f64>() / self.weights.len().max(1) as f64;
-        let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
-        log::debug!("harmonic map: cotangent matrix not positive definite, clamping weights");
-        let llt = self
-            .factor(&symbolic, Some(floor))
-            .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?;
-        self.finish(&llt, out)
+        let llt = match self.factor(&symbolic, None) {
+            Some(llt) => llt,
+            None => {
+                // Numerically indefinite: clamp to a positive floor (a convex-combination map).
+                let mean = self.weights.iter().map(|w| w.abs()).sum::<f64>()
+                    / self.weights.len().max(1) as f64;
+                let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
+                log::debug!(
+                    "harmonic map: cotangent matrix not positive definite, clamping weights"
+                );
+                self.factor(&symbolic, Some(floor))
+                    .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?
+            }
+        };
+        let done = self.finish(&llt, out);
+        self.last = Some(Box::new(Factored {
+            metric: metric.to_vec(),
+            weights: self.weights.clone(),
+            llt,
+        }));
+        done
     }
 
     /// [`Harmonic::solve`] with every weight clamped to a small positive floor first: a
@@ -320,6 +359,49 @@ mod tests {
             for (q, o) in tri.points.iter().zip(&out) {
                 assert!(affine(*q).distance(*o) < 1e-11, "{} vs {}", affine(*q), o);
             }
+        }
+    }
+
+    #[test]
+    fn a_kept_factor_solves_as_a_fresh_one() {
+        // One solver reused (the second and fourth solves take the kept factor, the third a
+        // new metric) against a fresh solver per solve: the same bits.
+        let p = Point::new;
+        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 16);
+        let pairs = vec![pair("boundary", true, sq)];
+        let tri = triangulate(
+            &pairs,
+            &crate::tolerance::Tolerances::new(14.0, 1.0),
+            crate::mesh::Side::Source,
+        )
+        .unwrap();
+        let n = tri.points.len();
+        let fixed: Vec<bool> = (0..n)
+            .map(|v| tri.curves[0].vertices.contains(&(v as u32)))
+            .collect();
+        let bent = |q: Point, k: f64| Point::new(q.x + k * (q.y * 0.3).sin(), q.y + k * q.x * 0.05);
+        let warped: Vec<Point> = tri.points.iter().map(|&q| bent(q, 0.4)).collect();
+        let mut kept = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
+        for (metric, k) in [
+            (&tri.points, 1.0),
+            (&tri.points, 2.0),
+            (&warped, 1.5),
+            (&warped, 0.5),
+        ] {
+            let prescribed: Vec<Point> = tri.points.iter().map(|&q| bent(q, k)).collect();
+            let mut a = prescribed.clone();
+            kept.solve(metric, &mut a).unwrap();
+            let mut b = prescribed;
+            Harmonic::new(&tri.triangles, n, &fixed)
+                .unwrap()
+                .solve(metric, &mut b)
+                .unwrap();
+            let bits = |v: &[Point]| {
+                v.iter()
+                    .map(|q| (q.x.to_bits(), q.y.to_bits()))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(bits(&a), bits(&b), "metric of step k = {k}");
         }
     }
 
