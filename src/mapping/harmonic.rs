@@ -322,6 +322,23 @@ mod tests {
     use crate::triangulation::tests::{circle, pair, subdivided};
     use crate::triangulation::triangulate;
 
+    /// The source triangulation of `pairs` and its curve vertices (the fixed ones).
+    fn meshed(
+        pairs: &[crate::correspondence::CurvePair],
+    ) -> (crate::triangulation::Triangulation, Vec<bool>) {
+        let tri = triangulate(
+            pairs,
+            &crate::tolerance::Tolerances::new(14.0, 1.0),
+            crate::mesh::Side::Source,
+        )
+        .unwrap();
+        let mut fixed = vec![false; tri.points.len()];
+        for &v in tri.curves.iter().flat_map(|c| &c.vertices) {
+            fixed[v as usize] = true;
+        }
+        (tri, fixed)
+    }
+
     #[test]
     fn reproduces_an_affine_map_exactly() {
         let p = Point::new;
@@ -330,19 +347,8 @@ mod tests {
             pair("boundary", true, sq),
             pair("feature-o", true, circle(p(6., 5.), 2., 24)),
         ];
-        let tri = triangulate(
-            &pairs,
-            &crate::tolerance::Tolerances::new(14.0, 1.0),
-            crate::mesh::Side::Source,
-        )
-        .unwrap();
+        let (tri, fixed) = meshed(&pairs);
         let n = tri.points.len();
-        let mut fixed = vec![false; n];
-        for c in &tri.curves {
-            for &v in &c.vertices {
-                fixed[v as usize] = true;
-            }
-        }
         assert!(fixed.iter().filter(|f| !**f).count() > 50);
         let affine =
             |q: Point| Point::new(1.3 * q.x - 0.4 * q.y + 3.0, 0.2 * q.x + 0.7 * q.y - 1.0);
@@ -369,16 +375,8 @@ mod tests {
         let p = Point::new;
         let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 16);
         let pairs = vec![pair("boundary", true, sq)];
-        let tri = triangulate(
-            &pairs,
-            &crate::tolerance::Tolerances::new(14.0, 1.0),
-            crate::mesh::Side::Source,
-        )
-        .unwrap();
+        let (tri, fixed) = meshed(&pairs);
         let n = tri.points.len();
-        let fixed: Vec<bool> = (0..n)
-            .map(|v| tri.curves[0].vertices.contains(&(v as u32)))
-            .collect();
         let bent = |q: Point, k: f64| Point::new(q.x + k * (q.y * 0.3).sin(), q.y + k * q.x * 0.05);
         let warped: Vec<Point> = tri.points.iter().map(|&q| bent(q, 0.4)).collect();
         let mut kept = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
