@@ -272,8 +272,8 @@ impl Morph {
     }
 
     /// The keyframes at `ts` ([`Morph::keyframe_at`]), solved and warped in parallel when
-    /// there is enough work ([`crate::parallel`]), each reported to the [`Morph::on_frame`]
-    /// hook.
+    /// there is enough work (about half a millisecond or more: below that, waking rayon's
+    /// threads costs more than it saves), each reported to the [`Morph::on_frame`] hook.
     pub fn keyframes_at(&self, ts: &[f64]) -> Result<Vec<Frame>> {
         let meshes = self.motion.frames(ts);
         let items: Vec<(&Vec<Point>, f64)> = meshes.iter().zip(ts.iter().copied()).collect();

@@ -340,8 +340,8 @@ impl Interpolator {
         out
     }
 
-    /// Many frames, in parallel (rayon) when there is enough work ([`crate::parallel`]), one
-    /// workspace per worker: `frames[k]` is the frame at `ts[k]`.
+    /// Many frames, in parallel (rayon) when there is enough work (about half a millisecond or
+    /// more), one workspace per worker: `frames[k]` is the frame at `ts[k]`.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
         parallel_frames(
             ts,
