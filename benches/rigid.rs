@@ -38,6 +38,17 @@ fn target(src: &[Point], width: f64) -> Vec<Point> {
         .collect()
 }
 
+/// Times of [`eight_frames`]: spread over the morph, none at its ends.
+const EIGHT: [f64; 8] = [0.06, 0.18, 0.31, 0.43, 0.56, 0.68, 0.81, 0.93];
+
+/// Eight frames with one [`Interpolator::at_many`] call: they share each pass over the disc
+/// method's factor. Criterion's time is for all eight; a frame costs an eighth of it.
+fn eight_frames(it: &Interpolator) -> impl FnMut() + '_ {
+    let mut ws = it.workspace();
+    let mut out = vec![Point::ZERO; EIGHT.len() * it.vertex_count()];
+    move || it.at_many(black_box(&EIGHT), &mut out, &mut ws)
+}
+
 fn bench(c: &mut Criterion) {
     for (nx, ny) in [(27, 26), (32, 32), (100, 100), (317, 316)] {
         let (src, tris) = grid(nx, ny);
@@ -57,6 +68,12 @@ fn bench(c: &mut Criterion) {
             g.bench_with_input(BenchmarkId::new(format!("frame/{name}"), n), &n, |b, _| {
                 b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
             });
+            if m == Method::Disc {
+                let mut eight = eight_frames(&it);
+                g.bench_with_input(BenchmarkId::new("frames8/disc", n), &n, |b, _| {
+                    b.iter(&mut eight)
+                });
+            }
         }
         g.finish();
     }
@@ -122,6 +139,8 @@ fn fixtures(c: &mut Criterion) {
         g.bench_function(format!("frame/disc/{name}"), |b| {
             b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
         });
+        let mut eight = eight_frames(&it);
+        g.bench_function(format!("frames8/disc/{name}"), |b| b.iter(&mut eight));
     }
     g.finish();
 }
@@ -145,6 +164,10 @@ fn scaling(c: &mut Criterion) {
         let mut out = vec![Point::ZERO; n];
         g.bench_with_input(BenchmarkId::new("frame", n), &n, |b, _| {
             b.iter(|| it.at(black_box(0.37), &mut out, &mut ws))
+        });
+        let mut eight = eight_frames(&it);
+        g.bench_with_input(BenchmarkId::new("frames8", n), &n, |b, _| {
+            b.iter(&mut eight)
         });
     }
     g.finish();

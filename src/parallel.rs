@@ -48,9 +48,42 @@ pub(crate) fn map_init<I: Sync, W, T: Send>(
     }
 }
 
+/// Items per batch when `len` items of `work` units in all are grouped into batches of at most
+/// `max` (frames that share a pass over a factor): as large as it may be, but small enough
+/// that every thread [`map_init`] uses gets a batch.
+pub(crate) fn batch_len(len: usize, work: usize, max: usize) -> usize {
+    let threads = if worth(work) {
+        rayon::current_num_threads()
+    } else {
+        1
+    };
+    let batches = len.div_ceil(max.max(1)).max(threads.min(len)).max(1);
+    len.div_ceil(batches).max(1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn batches_are_full_unless_a_thread_would_go_without() {
+        // On the calling thread: batches as large as allowed.
+        assert_eq!(batch_len(30, 0, 8), 8);
+        assert_eq!(batch_len(5, 0, 8), 5);
+        assert_eq!(batch_len(0, 0, 8), 1);
+        assert_eq!(batch_len(3, 0, 0), 1);
+        // On rayon's threads: enough batches for every thread, none above the limit.
+        let threads = rayon::current_num_threads();
+        for len in 1..40 {
+            let b = batch_len(len, usize::MAX, 8);
+            assert!((1..=8).contains(&b), "{len} items: batches of {b}");
+            assert!(
+                len.div_ceil(b) >= threads.min(len),
+                "{len} items in batches of {b} leave some of {threads} threads idle"
+            );
+            assert!(len.div_ceil(b) <= len.div_ceil(8).max(threads.min(len)));
+        }
+    }
 
     #[test]
     fn both_ways_give_the_items_in_order() {

@@ -23,7 +23,7 @@
 //! exactly compatible with the source (t = 0) or the target (t = 1), the solve reproduces that
 //! shape up to a translation and the centroid rule removes the translation.
 
-use super::factor::Factor;
+use super::factor::{Factor, Row, MAX_LANES};
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 use faer::sparse::{SparseColMat, Triplet};
@@ -229,6 +229,9 @@ pub(crate) struct SolveScratch {
     /// from [`FactoredSystem::rhs_index`]), and a last dummy row that pinned vertices write to.
     pub(crate) rhs: Vec<Point>,
     sums: Vec<Point>,
+    /// Right-hand sides of frames solved together ([`FactoredSystem::solve_lanes`]), row by
+    /// row; empty until the first batch.
+    lanes: Vec<[Point; MAX_LANES]>,
 }
 
 impl FactoredSystem {
@@ -264,6 +267,7 @@ impl FactoredSystem {
         SolveScratch {
             rhs: vec![Point::ZERO; self.n_red + 1],
             sums: vec![Point::ZERO; self.component_count()],
+            lanes: Vec::new(),
         }
     }
 
@@ -291,30 +295,77 @@ impl FactoredSystem {
     /// Solves for the right-hand side in `s.rhs` and writes every vertex into `out`, translating
     /// each free component so its vertex centroid is `centroids[component]` (module docs).
     pub(crate) fn solve(&self, s: &mut SolveScratch, centroids: &[Point], out: &mut [Point]) {
-        debug_assert_eq!(out.len(), self.n);
         if let Some(f) = &self.factor {
             f.solve_in_place(&mut s.rhs);
         }
+        self.place(&mut s.rhs, 0, &mut s.sums, centroids, out);
+    }
+
+    /// The rows of a batch of `K ≤` [`MAX_LANES`] right-hand sides, one per frame, with lanes
+    /// `0..K` zeroed for [`FactoredSystem::solve_lanes`]: row `r` of frame `k` is `rows[r][k]`
+    /// (rows as in [`FactoredSystem::rhs_index`]).
+    pub(crate) fn lanes<'s, const K: usize>(
+        &self,
+        s: &'s mut SolveScratch,
+    ) -> &'s mut [[Point; MAX_LANES]] {
+        s.lanes.resize(s.rhs.len(), [Point::ZERO; MAX_LANES]);
+        for row in &mut s.lanes {
+            row[..K].fill(Point::ZERO);
+        }
+        &mut s.lanes
+    }
+
+    /// Solves lanes `0..K` of the batch in one pass over the factor: each lane's solution has
+    /// the bits of a lone solve (`factor.rs`).
+    pub(crate) fn solve_lanes<const K: usize>(&self, s: &mut SolveScratch) {
+        if let Some(f) = &self.factor {
+            f.solve_rows::<K, _>(&mut s.lanes);
+        }
+    }
+
+    /// Places the solution of lane `lane` of the batch like [`FactoredSystem::solve`] does.
+    pub(crate) fn place_lane(
+        &self,
+        s: &mut SolveScratch,
+        lane: usize,
+        centroids: &[Point],
+        out: &mut [Point],
+    ) {
+        self.place(&mut s.lanes, lane, &mut s.sums, centroids, out);
+    }
+
+    /// Writes lane `lane` of the solved `rows` into `out`, every vertex, translating each free
+    /// component so its vertex centroid is `centroids[component]` (module docs); `sums` is
+    /// scratch, one per component.
+    fn place<R: Row>(
+        &self,
+        rows: &mut [R],
+        lane: usize,
+        sums: &mut [Point],
+        centroids: &[Point],
+        out: &mut [Point],
+    ) {
+        debug_assert_eq!(out.len(), self.n);
         // The dummy row holds the pinned vertices: at the origin before translation.
-        s.rhs[self.n_red] = Point::ZERO;
-        s.sums.fill(Point::ZERO);
+        *rows[self.n_red].lane_mut(lane) = Point::ZERO;
+        sums.fill(Point::ZERO);
         // Components are mostly runs of consecutive vertices: sum a run in a register, not
         // through memory one vertex after the other.
         let (mut run, mut sum) = (u32::MAX, Point::ZERO);
         for ((o, &r), &c) in out.iter_mut().zip(&self.reduced).zip(&self.comp) {
-            *o = s.rhs[r as usize];
+            *o = rows[r as usize].lane(lane);
             if c != run {
                 if run != u32::MAX {
-                    s.sums[run as usize] += sum;
+                    sums[run as usize] += sum;
                 }
                 (run, sum) = (c, Point::ZERO);
             }
             sum += *o;
         }
         if run != u32::MAX {
-            s.sums[run as usize] += sum;
+            sums[run as usize] += sum;
         }
-        for (c, acc) in s.sums.iter_mut().enumerate() {
+        for (c, acc) in sums.iter_mut().enumerate() {
             *acc = if self.comp_anchored[c] {
                 Point::ZERO
             } else {
@@ -322,7 +373,7 @@ impl FactoredSystem {
             };
         }
         for (o, &c) in out.iter_mut().zip(&self.comp) {
-            *o += s.sums[c as usize];
+            *o += sums[c as usize];
         }
     }
 }

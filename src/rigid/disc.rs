@@ -36,6 +36,7 @@ use super::area::AreaRule;
 use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
 };
+use super::factor::{Row, MAX_LANES};
 use super::rotation::consistent_angles_lazy;
 use super::sincos::sin_cos_many;
 use super::Repair;
@@ -562,61 +563,159 @@ impl DiscRigid {
         ws: &mut FrameScratch,
         repair: Repair,
     ) {
-        let rhs = &mut ws.solve.rhs;
-        rhs.fill(Point::ZERO);
+        ws.solve.rhs.fill(Point::ZERO);
+        self.assemble([t], targets, adjust, &mut ws.solve.rhs);
+        self.centroids_at(t, ws);
+        self.system.solve(&mut ws.solve, &ws.centroids, out);
+        self.finish(t, out, ws, repair);
+    }
+
+    /// Frames at every `t` of `ts` into `out`, laid end to end (fold repair as `repair`
+    /// says), the same bits as one [`DiscRigid::at_adjusted`] call each: up to [`MAX_LANES`]
+    /// frames share each pass over the factor, which at large meshes is most of a frame's
+    /// cost, and each pass over the terms.
+    pub(crate) fn at_many(
+        &self,
+        ts: &[f64],
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+        repair: Repair,
+    ) {
+        let n = self.vertex_count();
+        debug_assert_eq!(out.len(), ts.len() * n);
+        if n == 0 {
+            return;
+        }
+        for (ts, out) in ts.chunks(MAX_LANES).zip(out.chunks_mut(MAX_LANES * n)) {
+            match ts.len() {
+                1 => self.at_adjusted(ts[0], &[], None, out, ws, repair),
+                2 => self.batch::<2>(ts, out, ws, repair),
+                3 => self.batch::<3>(ts, out, ws, repair),
+                4 => self.batch::<4>(ts, out, ws, repair),
+                5 => self.batch::<5>(ts, out, ws, repair),
+                6 => self.batch::<6>(ts, out, ws, repair),
+                7 => self.batch::<7>(ts, out, ws, repair),
+                _ => self.batch::<MAX_LANES>(ts, out, ws, repair),
+            }
+        }
+    }
+
+    /// The `K` frames at `ts` (`ts.len() == K`) as one batch: their right-hand sides in the
+    /// lanes of one buffer, one solve, then each frame placed, repaired and area-corrected.
+    fn batch<const K: usize>(
+        &self,
+        ts: &[f64],
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+        repair: Repair,
+    ) {
+        let ts: [f64; K] = std::array::from_fn(|k| ts[k]);
+        let rows = self.system.lanes::<K>(&mut ws.solve);
+        self.assemble(ts, &[], None, rows);
+        self.system.solve_lanes::<K>(&mut ws.solve);
+        for (lane, (&t, out)) in ts
+            .iter()
+            .zip(out.chunks_mut(self.vertex_count()))
+            .enumerate()
+        {
+            self.centroids_at(t, ws);
+            self.system
+                .place_lane(&mut ws.solve, lane, &ws.centroids, out);
+            self.finish(t, out, ws, repair);
+        }
+    }
+
+    /// The right-hand sides of eq. (1) at the times `ts` into lanes `0..K` of `rhs` (the
+    /// factor's rows, zero on entry): every edge's rotated, scaled difference, adjusted as
+    /// [`DiscRigid::at_adjusted`] says, and the extra rows' targets (the same for every lane).
+    /// Each lane takes the operations of a lone frame in the same order, so it has its bits.
+    fn assemble<const K: usize, R: Row>(
+        &self,
+        ts: [f64; K],
+        targets: &[Point],
+        adjust: Option<&[Point]>,
+        rhs: &mut [R],
+    ) {
         // Rotations a chunk at a time, each used while it is still in registers and L1.
-        let (mut angle, mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        let mut angle = [0.0; CHUNK];
+        let (mut sin, mut cos) = ([[0.0; CHUNK]; K], [[0.0; CHUNK]; K]);
         for (c, (terms, alpha)) in self
             .terms
             .chunks(CHUNK)
             .zip(self.alpha.chunks(CHUNK))
             .enumerate()
         {
-            let k = terms.len();
-            for (a, &al) in angle.iter_mut().zip(alpha) {
-                *a = t * al;
+            let m = terms.len();
+            for (k, &t) in ts.iter().enumerate() {
+                for (a, &al) in angle.iter_mut().zip(alpha) {
+                    *a = t * al;
+                }
+                sin_cos_many(&angle[..m], &mut sin[k][..m], &mut cos[k][..m]);
             }
-            sin_cos_many(&angle[..k], &mut sin[..k], &mut cos[..k]);
-            let rotated = terms.iter().zip(&sin[..k]).zip(&cos[..k]);
+            // Term `i`'s difference rotated and scaled for lane `k`.
+            let rotated = |i: usize, k: usize| {
+                let (e, sn, cs) = (&terms[i], sin[k][i], cos[k][i]);
+                Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y)
+                    * (1.0 + ts[k] * e.s1)
+            };
             match adjust {
                 None => {
-                    // Terms are sorted by their first end point: its row's sum stays in a
-                    // register while the run lasts.
-                    let (mut row, mut sum) = (u32::MAX, Point::ZERO);
-                    for ((e, &sn), &cs) in rotated {
-                        let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y)
-                            * (1.0 + t * e.s1);
-                        rhs[e.rj as usize] += l;
+                    // Terms are sorted by their first end point: its row's sums stay in
+                    // registers while the run lasts.
+                    let (mut row, mut sum) = (u32::MAX, [Point::ZERO; K]);
+                    for (i, e) in terms.iter().enumerate() {
+                        let l: [Point; K] = std::array::from_fn(|k| rotated(i, k));
+                        let rj = &mut rhs[e.rj as usize];
+                        for (k, &l) in l.iter().enumerate() {
+                            *rj.lane_mut(k) += l;
+                        }
                         if e.ri != row {
                             if row != u32::MAX {
-                                rhs[row as usize] -= sum;
+                                let ri = &mut rhs[row as usize];
+                                for (k, &s) in sum.iter().enumerate() {
+                                    *ri.lane_mut(k) -= s;
+                                }
                             }
-                            (row, sum) = (e.ri, Point::ZERO);
+                            (row, sum) = (e.ri, [Point::ZERO; K]);
                         }
-                        sum += l;
+                        for (s, &l) in sum.iter_mut().zip(&l) {
+                            *s += l;
+                        }
                     }
                     if row != u32::MAX {
-                        rhs[row as usize] -= sum;
+                        let ri = &mut rhs[row as usize];
+                        for (k, &s) in sum.iter().enumerate() {
+                            *ri.lane_mut(k) -= s;
+                        }
                     }
                 }
                 Some(a) => {
-                    let ends = &self.ends[c * CHUNK..c * CHUNK + k];
-                    for (((e, &sn), &cs), &(vi, vj)) in rotated.zip(ends) {
-                        let l = Point::new(cs * e.wd.x - sn * e.wd.y, sn * e.wd.x + cs * e.wd.y)
-                            * (1.0 + t * e.s1);
-                        let m = (a[vi as usize] + a[vj as usize]) * 0.5;
-                        let l = Point::new(m.x * l.x - m.y * l.y, m.y * l.x + m.x * l.y);
-                        rhs[e.rj as usize] += l;
-                        rhs[e.ri as usize] -= l;
+                    let ends = &self.ends[c * CHUNK..c * CHUNK + m];
+                    for (i, (e, &(vi, vj))) in terms.iter().zip(ends).enumerate() {
+                        let f = (a[vi as usize] + a[vj as usize]) * 0.5;
+                        for k in 0..K {
+                            let l = rotated(i, k);
+                            let l = Point::new(f.x * l.x - f.y * l.y, f.y * l.x + f.x * l.y);
+                            *rhs[e.rj as usize].lane_mut(k) += l;
+                            *rhs[e.ri as usize].lane_mut(k) -= l;
+                        }
                     }
                 }
             }
         }
         for (row, &j) in self.extra.iter().zip(targets) {
             for &(v, c) in &row.coeffs {
-                rhs[self.system.rhs_index(v)] += j * (row.weight * c);
+                let r = &mut rhs[self.system.rhs_index(v)];
+                for k in 0..K {
+                    *r.lane_mut(k) += j * (row.weight * c);
+                }
             }
         }
+    }
+
+    /// Every component's centroid at `t` into `ws.centroids`: the straight line between its
+    /// ends, or the barycenter mesh's motion for grouped parts.
+    fn centroids_at(&self, t: f64, ws: &mut FrameScratch) {
         lerp_into(
             &mut ws.centroids,
             &self.centroid_source,
@@ -632,7 +731,10 @@ impl DiscRigid {
                 }
             }
         }
-        self.system.solve(&mut ws.solve, &ws.centroids, out);
+    }
+
+    /// The solved frame's fold repair (as `repair` says) and area rule.
+    fn finish(&self, t: f64, out: &mut [Point], ws: &mut FrameScratch, repair: Repair) {
         // Repair first, then the area rule: its uniform scales keep every orientation, and the
         // area comes out exact whatever the repair moved.
         if let Some(fold) = &self.repair {

@@ -29,6 +29,7 @@ mod triangle;
 use crate::error::{Error, Result};
 use crate::geometry::Point;
 pub(crate) use disc::{DiscRigid, ExtraRow, FrameScratch};
+use factor::MAX_LANES;
 use triangle::TriangleRigid;
 
 /// A polyline of points whose consecutive points are each other's disc neighbours: a curve
@@ -333,6 +334,48 @@ impl Interpolator {
         }
     }
 
+    /// Frames at every `t` of `ts` into `out`, laid end to end (frame `k` at
+    /// `out[k·n..(k + 1)·n]`, `n` = [`Interpolator::vertex_count`]), the same bits as one
+    /// [`Interpolator::at`] call each, without allocating (but once per workspace). The disc
+    /// method solves up to eight frames in one pass over its factor (§4.1: the matrix is the
+    /// same for every `t`), which on large meshes costs a third of solving them one by one.
+    ///
+    /// # Panics
+    /// If `out.len() != ts.len() · vertex_count()` (a programming error, not a data error).
+    pub fn at_many(&self, ts: &[f64], out: &mut [Point], ws: &mut Workspace) {
+        self.many_repairing(ts, out, ws, Repair::AsSetUp);
+    }
+
+    /// [`Interpolator::at_many`] with the disc method's fold repair as `repair` says.
+    fn many_repairing(&self, ts: &[f64], out: &mut [Point], ws: &mut Workspace, repair: Repair) {
+        assert_eq!(
+            out.len(),
+            ts.len().saturating_mul(self.n),
+            "output buffer length must equal ts.len() · vertex_count()"
+        );
+        match &self.kind {
+            Kind::Disc(d) => {
+                if ws.owner != self.id {
+                    *ws = self.workspace();
+                }
+                let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
+                let mut clamped = [0.0; MAX_LANES];
+                let per_batch = MAX_LANES * self.n.max(1);
+                for (ts, out) in ts.chunks(MAX_LANES).zip(out.chunks_mut(per_batch)) {
+                    for (c, &t) in clamped.iter_mut().zip(ts) {
+                        *c = clamp_time(t);
+                    }
+                    d.at_many(&clamped[..ts.len()], out, scratch, repair);
+                }
+            }
+            Kind::Triangle(..) | Kind::Linear(..) => {
+                for (&t, out) in ts.iter().zip(out.chunks_mut(self.n.max(1))) {
+                    self.at_repairing(t, out, ws, repair);
+                }
+            }
+        }
+    }
+
     /// Vertices at `t` in a new vector.
     pub fn at_vec(&self, t: f64) -> Vec<Point> {
         let mut out = vec![Point::ZERO; self.n];
@@ -347,7 +390,7 @@ impl Interpolator {
             ts,
             self.n,
             || self.workspace(),
-            |t, out, ws| self.at(t, out, ws),
+            |ts, out, ws| self.many_repairing(ts, out, ws, Repair::AsSetUp),
         )
     }
 
@@ -360,7 +403,7 @@ impl Interpolator {
             ts,
             self.n,
             || self.workspace(),
-            |t, out, ws| self.at_repairing(t, out, ws, repair),
+            |ts, out, ws| self.many_repairing(ts, out, ws, repair),
         )
     }
 
@@ -379,19 +422,29 @@ impl Interpolator {
 
 /// Frames at every `t` of `ts`, in parallel when there is enough work
 /// ([`crate::parallel`]), each worker with its own workspace from `workspace`:
-/// `at(t, out, ws)` fills a frame of `n` points. Shared by every precompute-then-apply motion
-/// (the interpolator, skeleton control).
+/// `at_many(ts, out, ws)` fills the frames of a batch of up to [`MAX_LANES`] times, `n` points
+/// each, laid end to end in `out`, so that a motion can share one pass over its factor among
+/// them. Shared by every precompute-then-apply motion (the interpolator, skeleton control).
 pub(crate) fn parallel_frames<W>(
     ts: &[f64],
     n: usize,
     workspace: impl Fn() -> W + Sync + Send,
-    at: impl Fn(f64, &mut [Point], &mut W) + Sync + Send,
+    at_many: impl Fn(&[f64], &mut [Point], &mut W) + Sync + Send,
 ) -> Vec<Vec<Point>> {
-    crate::parallel::map_init(ts, ts.len().saturating_mul(n), workspace, |ws, &t| {
-        let mut out = vec![Point::ZERO; n];
-        at(t, &mut out, ws);
-        out
+    let work = ts.len().saturating_mul(n);
+    let per_batch = crate::parallel::batch_len(ts.len(), work, MAX_LANES);
+    let batches: Vec<&[f64]> = ts.chunks(per_batch).collect();
+    crate::parallel::map_init(&batches, work, workspace, |ws, ts| {
+        let mut out = vec![Point::ZERO; ts.len() * n];
+        at_many(ts, &mut out, ws);
+        if n == 0 {
+            return vec![Vec::new(); ts.len()];
+        }
+        out.chunks(n).map(<[Point]>::to_vec).collect::<Vec<_>>()
     })
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 #[cfg(test)]

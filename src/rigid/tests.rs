@@ -183,6 +183,88 @@ fn one_interpolator_read_three_ways_gives_the_frames_of_three() {
 }
 
 #[test]
+fn frames_solved_together_have_the_bits_of_lone_frames() {
+    // `frames` solves up to eight frames in one pass over the factor, in batches spread over
+    // rayon's threads when the work is large; each frame must keep the bits of `at`.
+    let bits = |f: &[Point]| -> Vec<(u64, u64)> {
+        f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
+    };
+    // A folding grid with the fold repair and two separate parts: small, on one thread.
+    let (a, ta) = grid(7, 7, 1.0);
+    let n = a.len() as u32;
+    let src: Vec<Point> = a
+        .iter()
+        .copied()
+        .chain(a.iter().map(|p| *p + Point::new(10.0, 0.0)))
+        .collect();
+    let tris: Vec<[u32; 3]> = ta
+        .iter()
+        .copied()
+        .chain(ta.iter().map(|t| t.map(|v| v + n)))
+        .collect();
+    let mut tgt: Vec<Point> = src
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if (k as u32) < n {
+                rot(*p, 2.0)
+            } else {
+                *p + Point::new(0.0, 5.0)
+            }
+        })
+        .collect();
+    tgt[2 * 7 + 2] = rot(Point::new(4.6, 3.7), 2.0);
+    let on_curve = vec![false; src.len()];
+    let small = Interpolator::disc(
+        &src,
+        &tgt,
+        &DiscSetup {
+            triangles: &tris,
+            repair: Some((&tris, &on_curve)),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    // A large bent grid: its frames go to rayon's threads.
+    let (big_src, big_tris) = grid(60, 60, 1.0);
+    let big = Interpolator::new(
+        Method::Disc,
+        &big_src,
+        &bend(&big_src, 60.0, 1.3, 0.6),
+        &big_tris,
+    )
+    .unwrap();
+    for it in [&small, &big] {
+        // One workspace for every batch length, as a caller would keep it.
+        let mut ws = it.workspace();
+        for len in [1, 2, 7, 8, 9, 17, 20] {
+            let ts: Vec<f64> = (0..len)
+                .map(|k| match k {
+                    3 => f64::NAN,
+                    5 => 1.3,
+                    _ => k as f64 / (len as f64 - 0.5),
+                })
+                .collect();
+            let together = it.frames(&ts);
+            assert_eq!(together.len(), len);
+            let mut flat = vec![Point::ZERO; len * it.vertex_count()];
+            it.at_many(&ts, &mut flat, &mut ws);
+            assert!(
+                bits(&flat) == bits(&together.concat()),
+                "at_many and frames differ"
+            );
+            for (k, (f, &t)) in together.iter().zip(&ts).enumerate() {
+                assert!(
+                    bits(f) == bits(&it.at_vec(t)),
+                    "{} points, {len} frames: frame {k} (t = {t}) differs",
+                    it.vertex_count()
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn times_outside_the_morph_hold_its_ends() {
     // One rule for every method (`clamp_time`): before 0 the source, after 1 the target,
     // NaN the source; the disc method would otherwise keep turning past t = 1.

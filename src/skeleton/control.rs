@@ -305,7 +305,11 @@ impl SkeletonControl {
             ts,
             self.n,
             || self.workspace(),
-            |t, out, ws| self.at(t, out, ws),
+            |ts, out, ws| {
+                for (&t, out) in ts.iter().zip(out.chunks_mut(self.n.max(1))) {
+                    self.at(t, out, ws);
+                }
+            },
         )
     }
 }
