@@ -182,6 +182,24 @@ fn one_interpolator_read_three_ways_gives_the_frames_of_three() {
     );
 }
 
+/// Two meshes side by side, the second moved 10 to the right, as one: points, triangles and
+/// the first index of the second part.
+fn two_parts(
+    (a, ta): (Vec<Point>, Vec<[u32; 3]>),
+    (b, tb): (Vec<Point>, Vec<[u32; 3]>),
+) -> (Vec<Point>, Vec<[u32; 3]>, u32) {
+    let n = a.len() as u32;
+    let src = a
+        .into_iter()
+        .chain(b.into_iter().map(|p| p + Point::new(10.0, 0.0)))
+        .collect();
+    let tris = ta
+        .into_iter()
+        .chain(tb.into_iter().map(|t| t.map(|v| v + n)))
+        .collect();
+    (src, tris, n)
+}
+
 #[test]
 fn frames_solved_together_have_the_bits_of_lone_frames() {
     // `frames` solves up to eight frames in one pass over the factor, in batches spread over
@@ -190,18 +208,7 @@ fn frames_solved_together_have_the_bits_of_lone_frames() {
         f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
     };
     // A folding grid with the fold repair and two separate parts: small, on one thread.
-    let (a, ta) = grid(7, 7, 1.0);
-    let n = a.len() as u32;
-    let src: Vec<Point> = a
-        .iter()
-        .copied()
-        .chain(a.iter().map(|p| *p + Point::new(10.0, 0.0)))
-        .collect();
-    let tris: Vec<[u32; 3]> = ta
-        .iter()
-        .copied()
-        .chain(ta.iter().map(|t| t.map(|v| v + n)))
-        .collect();
+    let (src, tris, n) = two_parts(grid(7, 7, 1.0), grid(7, 7, 1.0));
     let mut tgt: Vec<Point> = src
         .iter()
         .enumerate()
@@ -501,18 +508,7 @@ fn uneven_stretch_keeps_the_area_of_the_blend() {
 
 #[test]
 fn disconnected_parts_each_move_rigidly() {
-    let (a, ta) = grid(5, 5, 1.0);
-    let (b, tb) = grid(4, 6, 1.0);
-    let n = a.len() as u32;
-    let src: Vec<Point> = a
-        .iter()
-        .copied()
-        .chain(b.iter().map(|p| *p + Point::new(10.0, 0.0)))
-        .collect();
-    let tris: Vec<[u32; 3]> = ta
-        .into_iter()
-        .chain(tb.into_iter().map(|t| t.map(|v| v + n)))
-        .collect();
+    let (src, tris, n) = two_parts(grid(5, 5, 1.0), grid(4, 6, 1.0));
     let tgt: Vec<Point> = src
         .iter()
         .enumerate()
