@@ -49,6 +49,14 @@ fn eight_frames(it: &Interpolator) -> impl FnMut() + '_ {
     move || it.at_many(black_box(&EIGHT), &mut out, &mut ws)
 }
 
+/// Sixteen frames through [`Interpolator::frames`], as the exporters ask for them: two batches
+/// of eight, on both of rayon's threads when the work is large enough (about 1,000 vertices
+/// and up). Criterion's time is the wall time of all sixteen, output vectors included.
+fn sixteen_frames(it: &Interpolator) -> impl FnMut() -> Vec<Vec<Point>> + '_ {
+    let ts: Vec<f64> = (1..=16).map(|k| k as f64 / 17.0).collect();
+    move || it.frames(black_box(&ts))
+}
+
 fn bench(c: &mut Criterion) {
     for (nx, ny) in [(27, 26), (32, 32), (100, 100), (317, 316)] {
         let (src, tris) = grid(nx, ny);
@@ -72,6 +80,10 @@ fn bench(c: &mut Criterion) {
                 let mut eight = eight_frames(&it);
                 g.bench_with_input(BenchmarkId::new("frames8/disc", n), &n, |b, _| {
                     b.iter(&mut eight)
+                });
+                let mut sixteen = sixteen_frames(&it);
+                g.bench_with_input(BenchmarkId::new("frames16-parallel/disc", n), &n, |b, _| {
+                    b.iter(&mut sixteen)
                 });
             }
         }
