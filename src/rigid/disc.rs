@@ -26,7 +26,10 @@
 //! first at its smaller end point, as the sorted edge list does). So for deformations whose
 //! neighbouring rotations differ by less than π — the case §4.1.1 is designed for — both graphs
 //! give the same angles; `reduced_rotation_graph_matches_the_full_graph` checks it on bends and
-//! turns past 180°.
+//! turns past 180°. The edges at a vertex are all linked to each other (a clique), so the
+//! spanning forest is found from each clique's own spanning tree
+//! ([`super::rotation::consistent_angles_in_cliques`]): the same forest, from a third of the
+//! links.
 //!
 //! On triangle meshes the frames then get the area rule (`area.rs`, a documented deviation):
 //! each connected part is scaled uniformly so that its area does not swell where eq. (1)'s
@@ -37,7 +40,7 @@ use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
 };
 use super::factor::{Row, MAX_LANES};
-use super::rotation::consistent_angles_lazy;
+use super::rotation::consistent_angles_in_cliques;
 use super::sincos::sin_cos_many;
 use super::Repair;
 use crate::error::{Error, Result};
@@ -94,6 +97,35 @@ pub(crate) fn validate_points(source: &[Point], target: &[Point]) -> Result<()> 
     Ok(())
 }
 
+/// Every directed pair `(i, j)` of `directed` (sorted, no repeats) as `(min, max)`, sorted, so
+/// that an edge present in both directions appears twice. When the discs are `ascending` and
+/// symmetric (`j` in `i`'s disc whenever `i` is in `j`'s, as one-rings are), that is each
+/// pair `(i, j)` with `i < j` twice, in the order `directed` has them: no sort. Otherwise
+/// the pairs are sorted.
+fn undirected_pairs(
+    directed: &[(u32, u32)],
+    discs: &[Vec<u32>],
+    ascending: bool,
+) -> Vec<(u32, u32)> {
+    let symmetric = ascending
+        && directed
+            .iter()
+            .all(|&(i, j)| discs[j as usize].binary_search(&i).is_ok());
+    if symmetric {
+        return directed
+            .iter()
+            .filter(|&&(i, j)| i < j)
+            .flat_map(|&p| [p, p])
+            .collect();
+    }
+    let mut undirected: Vec<(u32, u32)> = directed
+        .iter()
+        .map(|&(i, j)| (i.min(j), i.max(j)))
+        .collect();
+    crate::mesh::sort_pairs(&mut undirected);
+    undirected
+}
+
 fn diagonal(points: &[Point]) -> f64 {
     bounding_box(points.iter().copied()).map_or(0.0, |(lo, hi)| lo.distance(hi))
 }
@@ -110,7 +142,8 @@ impl LocalTransforms {
                 format!("{} discs given for {} points", discs.len(), n),
             ));
         }
-        let mut directed: Vec<(u32, u32)> = Vec::new();
+        let mut directed: Vec<(u32, u32)> = Vec::with_capacity(discs.iter().map(Vec::len).sum());
+        let mut ascending = true;
         for (i, d) in discs.iter().enumerate() {
             for &j in d {
                 if j as usize >= n || j as usize == i {
@@ -123,14 +156,13 @@ impl LocalTransforms {
                 }
                 directed.push((i as u32, j));
             }
+            ascending &= d.windows(2).all(|w| w[0] < w[1]);
         }
-        crate::mesh::sort_pairs(&mut directed);
-        directed.dedup();
-        let mut undirected: Vec<(u32, u32)> = directed
-            .iter()
-            .map(|&(i, j)| (i.min(j), i.max(j)))
-            .collect();
-        crate::mesh::sort_pairs(&mut undirected);
+        if !ascending {
+            crate::mesh::sort_pairs(&mut directed);
+            directed.dedup();
+        }
+        let undirected = undirected_pairs(&directed, discs, ascending);
         let (min_src, min_tgt) = (
             MIN_EDGE_FRACTION * diagonal(source),
             MIN_EDGE_FRACTION * diagonal(target),
@@ -207,33 +239,17 @@ impl LocalTransforms {
             .collect()
     }
 
-    /// The reduced rotation graph: links between edges that share a vertex (module docs).
-    pub(crate) fn rotation_links(&self, n: usize) -> Vec<(u32, u32)> {
-        // Each vertex's incident edges in edge order, in compressed rows (one allocation, not
-        // one per vertex: this runs in every set-up).
-        let (start, incident) = crate::mesh::compressed_rows(
+    /// The reduced rotation graph (module docs) as cliques: the edges incident to each vertex,
+    /// in edge order and in compressed rows (`(start, edges)`, vertex `v`'s edges
+    /// `edges[start[v]..start[v + 1]]`), every two of which are linked.
+    pub(crate) fn rotation_cliques(&self, n: usize) -> (Vec<usize>, Vec<u32>) {
+        crate::mesh::compressed_rows(
             n,
             self.edges
                 .iter()
                 .enumerate()
                 .flat_map(|(k, &(i, j))| [(i, k as u32), (j, k as u32)]),
-        );
-        let pairs: usize = (0..n)
-            .map(|v| {
-                let d = start[v + 1] - start[v];
-                d * d.saturating_sub(1) / 2
-            })
-            .sum();
-        let mut links = Vec::with_capacity(pairs);
-        for v in 0..n {
-            let inc = &incident[start[v]..start[v + 1]];
-            for (a, &ka) in inc.iter().enumerate() {
-                for &kb in &inc[a + 1..] {
-                    links.push((ka, kb));
-                }
-            }
-        }
-        links
+        )
     }
 }
 
@@ -378,7 +394,7 @@ impl DiscRigid {
     ) -> Result<Self> {
         let local = LocalTransforms::new(source, target, discs)?;
         let n = source.len();
-        let alpha = consistent_angles_lazy(&local.alpha, || local.rotation_links(n));
+        let alpha = consistent_angles_in_cliques(&local.alpha, || local.rotation_cliques(n));
         let mut builder = SystemBuilder::new(n);
         for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
             builder.add_edge(i, j, w);
@@ -765,6 +781,45 @@ mod tests {
     use super::*;
 
     proptest::proptest! {
+        /// The pairs of both directions come out as a sort would give them, whether the discs
+        /// are one-rings (ascending and symmetric: no sort) or not (unsorted, repeated or
+        /// one-sided neighbours).
+        #[test]
+        fn undirected_pairs_are_the_sorted_pairs(
+            raw in proptest::collection::vec((0u32..40, 0u32..40), 0..200),
+            n in 2usize..40,
+            symmetric in proptest::bool::ANY,
+        ) {
+            let mut discs = vec![Vec::new(); n];
+            for &(a, b) in &raw {
+                let (a, b) = (a % n as u32, b % n as u32);
+                if a != b {
+                    discs[a as usize].push(b);
+                    if symmetric {
+                        discs[b as usize].push(a);
+                    }
+                }
+            }
+            if symmetric {
+                for d in &mut discs {
+                    d.sort_unstable();
+                    d.dedup();
+                }
+            }
+            let ascending = discs.iter().all(|d| d.windows(2).all(|w| w[0] < w[1]));
+            let mut directed: Vec<(u32, u32)> = discs
+                .iter()
+                .enumerate()
+                .flat_map(|(i, d)| d.iter().map(move |&j| (i as u32, j)))
+                .collect();
+            directed.sort_unstable();
+            directed.dedup();
+            let mut want: Vec<(u32, u32)> =
+                directed.iter().map(|&(i, j)| (i.min(j), i.max(j))).collect();
+            want.sort_unstable();
+            proptest::prop_assert_eq!(undirected_pairs(&directed, &discs, ascending), want);
+        }
+
         /// Each disc's mean angle, summed by disc pairs, is bit for bit the mean over the
         /// disc sorted and deduplicated with each edge's angle found by binary search (how it
         /// was computed before), repeated and unsorted discs included.

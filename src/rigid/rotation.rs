@@ -28,33 +28,102 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
     along_spanning_forest(angles, links)
 }
 
-/// [`consistent_angles`] with the links made by `links` only when they are needed (not for
-/// angles within a half turn): the disc method's rotation graph has about five links per
-/// mesh edge.
-pub(crate) fn consistent_angles_lazy(
+/// [`consistent_angles`] over the graph that links every two nodes of the same clique — clique
+/// `c`'s nodes are `members[start[c]..start[c + 1]]`, each clique given by `cliques` only when
+/// it is needed (not for angles within a half turn). The disc method's rotation graph is such
+/// a graph: its edges meeting at a vertex are all linked, about five links per mesh edge.
+///
+/// The result is that of [`consistent_angles`] on all those links, bit for bit, with a third
+/// of them sorted: a link that is not in its own clique's minimum spanning tree is the
+/// heaviest link of a cycle within the clique, so it is in no minimum spanning forest of the
+/// whole graph either (keys are distinct, so each forest is unique), and only the cliques'
+/// trees (found by Prim's algorithm, `d − 1` links for `d` nodes) go on to Kruskal.
+pub(crate) fn consistent_angles_in_cliques(
     angles: &[f64],
-    links: impl FnOnce() -> Vec<(u32, u32)>,
+    cliques: impl FnOnce() -> (Vec<usize>, Vec<u32>),
 ) -> Vec<f64> {
     if within_half_turn(angles) {
         // No two angles are π apart, so no child is ever shifted, whatever the tree: the
         // traversal would hand back the angles as they are.
         return angles.to_vec();
     }
-    along_spanning_forest(angles, &links())
+    let (start, members) = cliques();
+    let candidates: usize = start
+        .windows(2)
+        .map(|w| (w[1] - w[0]).saturating_sub(1))
+        .sum();
+    let mut keys = Vec::with_capacity(candidates);
+    let mut prim = Prim::default();
+    for w in start.windows(2) {
+        prim.tree(angles, &members[w[0]..w[1]], &mut keys);
+    }
+    forest_from_keys(angles, keys)
+}
+
+/// Scratch of Prim's algorithm on one clique.
+#[derive(Default)]
+struct Prim {
+    /// Nodes not yet in the tree, with the key of their lightest link into it.
+    outside: Vec<(u32, u128)>,
+}
+
+impl Prim {
+    /// Pushes the keys of the minimum spanning tree of the clique on `nodes` (every two
+    /// linked, repeated nodes and self-links ignored as [`along_spanning_forest`] ignores
+    /// them) onto `keys`.
+    fn tree(&mut self, angles: &[f64], nodes: &[u32], keys: &mut Vec<u128>) {
+        let Some((&first, rest)) = nodes.split_first() else {
+            return;
+        };
+        self.outside.clear();
+        self.outside
+            .extend(rest.iter().map(|&v| (v, link_key(angles, first, v))));
+        while !self.outside.is_empty() {
+            let (k, &(v, key)) = self
+                .outside
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, &(_, key))| key)
+                .expect("not empty");
+            self.outside.swap_remove(k);
+            if key != u128::MAX {
+                keys.push(key);
+            }
+            for (u, best) in self.outside.iter_mut() {
+                *best = (*best).min(link_key(angles, v, *u));
+            }
+        }
+    }
+}
+
+/// The key of the link `a`–`b` in Kruskal's order: its cost's bits in [`f64::total_cmp`]'s
+/// order, then its smaller and its larger node, as one integer (ordering plain integers is
+/// several times faster than comparing tuples, and the order is the same). A self-link has
+/// the key `u128::MAX` and is never taken.
+#[inline]
+fn link_key(angles: &[f64], a: u32, b: u32) -> u128 {
+    if a == b {
+        return u128::MAX;
+    }
+    let (a, b) = (a.min(b), a.max(b));
+    let cost = turn_between(angles[a as usize], angles[b as usize]);
+    (u128::from(total_order_bits(cost)) << 64) | (u128::from(a) << 32) | u128::from(b)
 }
 
 /// [`consistent_angles`] by its definition: the spanning forest and the traversal.
 fn along_spanning_forest(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64> {
+    let keys = links
+        .iter()
+        .filter(|(a, b)| a != b)
+        .map(|&(a, b)| link_key(angles, a, b))
+        .collect();
+    forest_from_keys(angles, keys)
+}
+
+/// Kruskal's spanning forest over the links whose keys ([`link_key`]) are `order`, then the
+/// traversal that puts each child on its parent's branch ([`consistent_angles`]).
+fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
     let n = angles.len();
-    // Kruskal: links in order of cost (in `f64::total_cmp`'s order), then of node indices, as
-    // one integer key each: ordering plain integers is several times faster than comparing
-    // tuples, and the order is the same.
-    let mut order: Vec<u128> = Vec::with_capacity(links.len());
-    order.extend(links.iter().filter(|(a, b)| a != b).map(|&(a, b)| {
-        let (a, b) = (a.min(b), a.max(b));
-        let cost = turn_between(angles[a as usize], angles[b as usize]);
-        (u128::from(total_order_bits(cost)) << 64) | (u128::from(a) << 32) | u128::from(b)
-    }));
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let mut tree: Vec<(u32, u32)> = Vec::with_capacity(n.saturating_sub(1));
     filter_kruskal(&mut order, &mut parent, &mut tree, n);
@@ -185,7 +254,18 @@ fn total_order_bits(x: f64) -> u64 {
 /// disc with a small angle instead, a badly fitted one in a distorted region, and that disc,
 /// as the root of smallest `|α|`, then leaves the two sides on different branches.
 fn turn_between(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(TAU);
+    let d = a - b;
+    // `rem_euclid` without its division when `d` is already within a turn, as the raw angles'
+    // differences are: `d % TAU` is then `d` exactly, so the bits are the same.
+    let d = if d.abs() < TAU {
+        if d < 0.0 {
+            d + TAU
+        } else {
+            d
+        }
+    } else {
+        d.rem_euclid(TAU)
+    };
     d.min(TAU - d)
 }
 
@@ -373,6 +453,51 @@ mod tests {
                 angles.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
             );
             proptest::prop_assert_eq!(consistent_angles(&angles, &links), full);
+        }
+    }
+
+    proptest::proptest! {
+        /// Each clique's own spanning tree stands in for all its links: the angles come out
+        /// bit for bit as from every link of every clique, on random cliques (overlapping,
+        /// nested, of one node, with repeated nodes) and angles drawn from a few values
+        /// across the whole circle (many equal costs, so the key order's ties are tried).
+        #[test]
+        fn clique_trees_give_the_angles_of_all_links(
+            levels in proptest::collection::vec(-3.2f64..3.2, 1..6),
+            pick in proptest::collection::vec(0usize..6, 2..120),
+            cliques in proptest::collection::vec(
+                proptest::collection::vec(0u32..120, 0..9), 0..60),
+        ) {
+            let angles: Vec<f64> = pick.iter().map(|&k| levels[k % levels.len()]).collect();
+            let n = angles.len() as u32;
+            let cliques: Vec<Vec<u32>> =
+                cliques.iter().map(|c| c.iter().map(|&v| v % n).collect()).collect();
+            let links: Vec<(u32, u32)> = cliques
+                .iter()
+                .flat_map(|c| {
+                    (0..c.len()).flat_map(move |a| (a + 1..c.len()).map(move |b| (c[a], c[b])))
+                })
+                .collect();
+            let mut start = vec![0usize];
+            let mut members = Vec::new();
+            for c in &cliques {
+                members.extend_from_slice(c);
+                start.push(members.len());
+            }
+            let want = along_spanning_forest(&angles, &links);
+            let got = consistent_angles_in_cliques(&angles, || (start, members));
+            proptest::prop_assert_eq!(
+                got.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
+                want.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
+            );
+        }
+
+        /// The shortcut in [`turn_between`] gives the bits of `rem_euclid` over differences
+        /// within a turn and beyond it.
+        #[test]
+        fn turn_between_keeps_the_bits_of_rem_euclid(a in -20.0f64..20.0, b in -20.0f64..20.0) {
+            let d = (a - b).rem_euclid(TAU);
+            proptest::prop_assert_eq!(turn_between(a, b).to_bits(), d.min(TAU - d).to_bits());
         }
     }
 

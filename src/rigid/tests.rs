@@ -1,6 +1,6 @@
 //! Tests of the interpolation methods on synthetic meshes built here.
 
-use super::rotation::{consistent_angles, full_disc_graph};
+use super::rotation::{consistent_angles, consistent_angles_in_cliques, full_disc_graph};
 use super::*;
 use crate::geometry::bounding_box;
 use crate::quality;
@@ -383,7 +383,21 @@ fn reduced_rotation_graph_matches_the_full_graph() {
     for (src, tris, tgt) in cases {
         let rings = crate::mesh::one_rings(&tris, src.len());
         let local = disc::LocalTransforms::new(&src, &tgt, &rings).unwrap();
-        let reduced = consistent_angles(&local.alpha, &local.rotation_links(src.len()));
+        let (start, members) = local.rotation_cliques(src.len());
+        let clique_links: Vec<(u32, u32)> = start
+            .windows(2)
+            .flat_map(|w| {
+                let m = &members[w[0]..w[1]];
+                (0..m.len()).flat_map(move |a| (a + 1..m.len()).map(move |b| (m[a], m[b])))
+            })
+            .collect();
+        let reduced = consistent_angles(&local.alpha, &clique_links);
+        let by_cliques =
+            consistent_angles_in_cliques(&local.alpha, || (start.clone(), members.clone()));
+        assert_eq!(
+            reduced.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
+            by_cliques.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
+        );
         let (nodes, links) = full_disc_graph(&rings);
         let raw: Vec<f64> = nodes
             .iter()
