@@ -314,6 +314,28 @@ struct PartGroup {
     barycenters: Option<Box<DiscRigid>>,
 }
 
+/// The extra-row targets and adjustments of a batch's frames, laid end to end (either empty
+/// for none), as [`DiscRigid::at_many_adjusted`] takes them.
+struct Lanes<'a> {
+    targets: &'a [Point],
+    adjust: &'a [Point],
+    frames: usize,
+}
+
+impl<'a> Lanes<'a> {
+    /// Frame `k`'s extra-row targets (empty for none).
+    fn targets(&self, k: usize) -> &'a [Point] {
+        let r = self.targets.len() / self.frames.max(1);
+        &self.targets[k * r..(k + 1) * r]
+    }
+
+    /// Frame `k`'s adjustments, if the frames have them.
+    fn adjust(&self, k: usize) -> Option<&'a [Point]> {
+        let n = self.adjust.len() / self.frames.max(1);
+        (n > 0).then(|| &self.adjust[k * n..(k + 1) * n])
+    }
+}
+
 /// Per-thread scratch for [`DiscRigid::at`] and the triangle baseline.
 #[derive(Debug)]
 pub(crate) struct FrameScratch {
@@ -580,7 +602,7 @@ impl DiscRigid {
         repair: Repair,
     ) {
         ws.solve.rhs.fill(Point::ZERO);
-        self.assemble([t], targets, adjust, &mut ws.solve.rhs);
+        self.assemble([t], [targets], adjust.map(|a| [a]), &mut ws.solve.rhs);
         self.centroids_at(t, ws);
         self.system.solve(&mut ws.solve, &ws.centroids, out);
         self.finish(t, out, ws, repair);
@@ -597,21 +619,56 @@ impl DiscRigid {
         ws: &mut FrameScratch,
         repair: Repair,
     ) {
+        self.at_many_adjusted(ts, &[], &[], out, ws, repair);
+    }
+
+    /// [`DiscRigid::at_many`] with each frame's extra-row targets and adjustments, as
+    /// [`DiscRigid::at_adjusted`] takes them for one frame: frame `k`'s are
+    /// `targets[k·r..(k + 1)·r]` for `r` extra rows and `adjust[k·n..(k + 1)·n]` for `n` points
+    /// (either empty for none). Each frame has the bits of its lone `at_adjusted` call.
+    pub(crate) fn at_many_adjusted(
+        &self,
+        ts: &[f64],
+        targets: &[Point],
+        adjust: &[Point],
+        out: &mut [Point],
+        ws: &mut FrameScratch,
+        repair: Repair,
+    ) {
         let n = self.vertex_count();
         debug_assert_eq!(out.len(), ts.len() * n);
+        debug_assert!(targets.len() % ts.len().max(1) == 0);
+        debug_assert!(adjust.is_empty() || adjust.len() == ts.len() * n);
         if n == 0 {
             return;
         }
-        for (ts, out) in ts.chunks(MAX_LANES).zip(out.chunks_mut(MAX_LANES * n)) {
+        let per = |v: &[Point], k: usize| -> usize {
+            if v.is_empty() {
+                0
+            } else {
+                v.len() / ts.len() * k
+            }
+        };
+        for (b, (ts, out)) in ts
+            .chunks(MAX_LANES)
+            .zip(out.chunks_mut(MAX_LANES * n))
+            .enumerate()
+        {
+            let first = b * MAX_LANES;
+            let lanes = Lanes {
+                targets: &targets[per(targets, first)..per(targets, first + ts.len())],
+                adjust: &adjust[per(adjust, first)..per(adjust, first + ts.len())],
+                frames: ts.len(),
+            };
             match ts.len() {
-                1 => self.at_adjusted(ts[0], &[], None, out, ws, repair),
-                2 => self.batch::<2>(ts, out, ws, repair),
-                3 => self.batch::<3>(ts, out, ws, repair),
-                4 => self.batch::<4>(ts, out, ws, repair),
-                5 => self.batch::<5>(ts, out, ws, repair),
-                6 => self.batch::<6>(ts, out, ws, repair),
-                7 => self.batch::<7>(ts, out, ws, repair),
-                _ => self.batch::<MAX_LANES>(ts, out, ws, repair),
+                1 => self.at_adjusted(ts[0], lanes.targets, lanes.adjust(0), out, ws, repair),
+                2 => self.batch::<2>(ts, &lanes, out, ws, repair),
+                3 => self.batch::<3>(ts, &lanes, out, ws, repair),
+                4 => self.batch::<4>(ts, &lanes, out, ws, repair),
+                5 => self.batch::<5>(ts, &lanes, out, ws, repair),
+                6 => self.batch::<6>(ts, &lanes, out, ws, repair),
+                7 => self.batch::<7>(ts, &lanes, out, ws, repair),
+                _ => self.batch::<MAX_LANES>(ts, &lanes, out, ws, repair),
             }
         }
     }
@@ -621,13 +678,17 @@ impl DiscRigid {
     fn batch<const K: usize>(
         &self,
         ts: &[f64],
+        lanes: &Lanes<'_>,
         out: &mut [Point],
         ws: &mut FrameScratch,
         repair: Repair,
     ) {
         let ts: [f64; K] = std::array::from_fn(|k| ts[k]);
+        let targets: [&[Point]; K] = std::array::from_fn(|k| lanes.targets(k));
+        let adjust: Option<[&[Point]; K]> = (!lanes.adjust.is_empty())
+            .then(|| std::array::from_fn(|k| lanes.adjust(k).unwrap_or(&[])));
         let rows = self.system.lanes::<K>(&mut ws.solve);
-        self.assemble(ts, &[], None, rows);
+        self.assemble(ts, targets, adjust, rows);
         self.system.solve_lanes::<K>(&mut ws.solve);
         for (lane, (&t, out)) in ts
             .iter()
@@ -643,13 +704,14 @@ impl DiscRigid {
 
     /// The right-hand sides of eq. (1) at the times `ts` into lanes `0..K` of `rhs` (the
     /// factor's rows, zero on entry): every edge's rotated, scaled difference, adjusted as
-    /// [`DiscRigid::at_adjusted`] says, and the extra rows' targets (the same for every lane).
-    /// Each lane takes the operations of a lone frame in the same order, so it has its bits.
+    /// [`DiscRigid::at_adjusted`] says (lane `k` by `adjust[k]`), and the extra rows' targets
+    /// (lane `k`'s `targets[k]`). Each lane takes the operations of a lone frame in the same
+    /// order, so it has its bits.
     fn assemble<const K: usize, R: Row>(
         &self,
         ts: [f64; K],
-        targets: &[Point],
-        adjust: Option<&[Point]>,
+        targets: [&[Point]; K],
+        adjust: Option<[&[Point]; K]>,
         rhs: &mut [R],
     ) {
         // Rotations a chunk at a time, each used while it is still in registers and L1.
@@ -708,8 +770,8 @@ impl DiscRigid {
                 Some(a) => {
                     let ends = &self.ends[c * CHUNK..c * CHUNK + m];
                     for (i, (e, &(vi, vj))) in terms.iter().zip(ends).enumerate() {
-                        let f = (a[vi as usize] + a[vj as usize]) * 0.5;
-                        for k in 0..K {
+                        for (k, a) in a.iter().enumerate() {
+                            let f = (a[vi as usize] + a[vj as usize]) * 0.5;
                             let l = rotated(i, k);
                             let l = Point::new(f.x * l.x - f.y * l.y, f.y * l.x + f.x * l.y);
                             *rhs[e.rj as usize].lane_mut(k) += l;
@@ -719,11 +781,13 @@ impl DiscRigid {
                 }
             }
         }
-        for (row, &j) in self.extra.iter().zip(targets) {
+        for (q, row) in self.extra.iter().enumerate() {
             for &(v, c) in &row.coeffs {
                 let r = &mut rhs[self.system.rhs_index(v)];
-                for k in 0..K {
-                    *r.lane_mut(k) += j * (row.weight * c);
+                for (k, targets) in targets.iter().enumerate() {
+                    if let Some(&j) = targets.get(q) {
+                        *r.lane_mut(k) += j * (row.weight * c);
+                    }
                 }
             }
         }

@@ -243,11 +243,26 @@ impl SkeletonControl {
             self.plain.at(t, out, &mut ws.plain);
             return;
         };
+        let desired = self.bone_adjustments(c, t, &mut ws.bone, &mut ws.adjust);
+        c.constrained
+            .at_adjusted(t, &desired, Some(&ws.adjust), out, cws, Repair::AsSetUp);
+    }
+
+    /// The desired skeleton at `t` (phase 1), with each vertex's bone transformation from the
+    /// derived to the desired skeleton into `adjust` (§4.2.2); `bone` is scratch, one entry
+    /// per bone.
+    fn bone_adjustments(
+        &self,
+        c: &Control,
+        t: f64,
+        bones: &mut [(Point, f64)],
+        adjust: &mut [Point],
+    ) -> Vec<Point> {
         let derived = c.derived.at(t);
         let desired = c.track.at(t);
         // Each bone's rotation and scale from the derived to the desired skeleton, as a unit
         // complex number and a scale.
-        for (m, &[a, b]) in ws.bone.iter_mut().zip(&self.skeleton.bones) {
+        for (m, &[a, b]) in bones.iter_mut().zip(&self.skeleton.bones) {
             let from = derived[b as usize] - derived[a as usize];
             let to = desired[b as usize] - desired[a as usize];
             let (lf, lt) = (from.length(), to.length());
@@ -262,17 +277,17 @@ impl SkeletonControl {
         }
         // Each vertex: its bones' transformations blended by the binding weights (rotations by
         // normalized linear blend, scales linearly), the rest of the weight the identity.
-        for (a, b) in ws.adjust.iter_mut().zip(&c.bound) {
+        for (a, b) in adjust.iter_mut().zip(&c.bound) {
             *a = match b.as_slice() {
                 [] => Point::new(1.0, 0.0),
                 [(bone, w)] if *w >= 1.0 - 1e-9 => {
-                    let (u, s) = ws.bone[*bone as usize];
+                    let (u, s) = bones[*bone as usize];
                     u * s
                 }
                 _ => {
                     let (mut u, mut s, mut rest) = (Point::ZERO, 0.0, 1.0);
                     for &(bone, w) in b {
-                        let (ub, sb) = ws.bone[bone as usize];
+                        let (ub, sb) = bones[bone as usize];
                         u += ub * w;
                         s += sb * w;
                         rest -= w;
@@ -288,8 +303,7 @@ impl SkeletonControl {
                 }
             };
         }
-        c.constrained
-            .at_adjusted(t, &desired, Some(&ws.adjust), out, cws, Repair::AsSetUp);
+        desired
     }
 
     /// The mesh at `t` in a new vector.
@@ -299,17 +313,32 @@ impl SkeletonControl {
         out
     }
 
-    /// Many frames in parallel: `frames[k]` is the mesh at `ts[k]`.
+    /// Many frames in parallel: `frames[k]` is the mesh at `ts[k]`, with the bits
+    /// [`SkeletonControl::at`] gives it; up to eight frames share each pass over the factor.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
         crate::rigid::parallel_frames(
             ts,
             self.n,
             || self.workspace(),
-            |ts, out, ws| {
-                for (&t, out) in ts.iter().zip(out.chunks_mut(self.n.max(1))) {
-                    self.at(t, out, ws);
-                }
-            },
+            |ts, out, ws| self.at_many(ts, out, ws),
         )
+    }
+
+    /// The meshes at every `t` of `ts` into `out`, laid end to end: each frame's desired
+    /// skeleton and bone transformations, then eq. (2) solved for the frames together
+    /// (`DiscRigid::at_many_adjusted`).
+    fn at_many(&self, ts: &[f64], out: &mut [Point], ws: &mut ControlWorkspace) {
+        let ts: Vec<f64> = ts.iter().map(|&t| crate::rigid::clamp_time(t)).collect();
+        let (Some(c), Some(cws)) = (&self.control, ws.constrained.as_mut()) else {
+            self.plain.at_many(&ts, out, &mut ws.plain, Repair::AsSetUp);
+            return;
+        };
+        let mut targets = Vec::new();
+        let mut adjust = vec![Point::ZERO; ts.len() * self.n];
+        for (&t, adjust) in ts.iter().zip(adjust.chunks_mut(self.n.max(1))) {
+            targets.extend(self.bone_adjustments(c, t, &mut ws.bone, adjust));
+        }
+        c.constrained
+            .at_many_adjusted(&ts, &targets, &adjust, out, cws, Repair::AsSetUp);
     }
 }

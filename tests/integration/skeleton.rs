@@ -265,3 +265,41 @@ fn the_bundled_poses_morph_without_inverted_triangles() {
         );
     }
 }
+
+/// Frames solved together (up to eight per pass over the factor, on rayon's threads) have the
+/// bits of frames solved one at a time, with a pose (per-frame targets and bone adjustments)
+/// and without, over batches of several lengths and times outside [0, 1].
+#[test]
+fn frames_solved_together_have_the_bits_of_lone_frames() {
+    let d = dancer("source.svg");
+    let tc = 0.5;
+    let (plain, derived) = unposed(&d, tc);
+    let pose = swing(
+        &d.skeleton,
+        &derived,
+        "skeleton-legs",
+        1,
+        -35f64.to_radians(),
+    );
+    let posed = posed(&d, tc, pose);
+    for (name, control) in [("unposed", &plain), ("posed", &posed)] {
+        for count in [1usize, 3, 8, 9, 17] {
+            let ts: Vec<f64> = (0..count)
+                .map(|i| -0.1 + 1.2 * i as f64 / count as f64)
+                .collect();
+            let frames = control.frames(&ts);
+            assert_eq!(frames.len(), count);
+            for (&t, frame) in ts.iter().zip(&frames) {
+                let lone = control.at_vec(t);
+                let same = frame.len() == lone.len()
+                    && frame.iter().zip(&lone).all(|(a, b)| {
+                        a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()
+                    });
+                assert!(
+                    same,
+                    "{name}, {count} frames: t = {t} differs from its lone frame"
+                );
+            }
+        }
+    }
+}
