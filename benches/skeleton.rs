@@ -1,6 +1,7 @@
 //! Skeleton control (§4.2) on the dancer fixture with its bundled control pose: the one-time
 //! set-up (harmonic weights, binding, phase-1 track, both factorizations) and the time per
-//! frame, against the plain disc interpolation's set-up and frame.
+//! frame, against the plain disc interpolation's set-up and frame; and sixteen frames through
+//! `frames` (batched and on both threads), each way.
 //!
 //! Run: `cargo bench --bench skeleton -- --warm-up-time 1 --measurement-time 3`
 
@@ -44,6 +45,15 @@ fn bench(c: &mut Criterion) {
     let mut cws = control.workspace();
     g.bench_function("frame/skeleton", |b| {
         b.iter(|| control.at(black_box(0.37), &mut out, &mut cws))
+    });
+    // Sixteen frames through `frames`, as the exporters take them: batches of up to eight
+    // frames per pass over the factor, on both threads.
+    let ts: Vec<f64> = (0..16).map(|k| k as f64 / 15.0).collect();
+    g.bench_function("frames16/plain", |b| {
+        b.iter(|| plain.frames(black_box(&ts)))
+    });
+    g.bench_function("frames16/skeleton", |b| {
+        b.iter(|| control.frames(black_box(&ts)))
     });
     g.finish();
 }
