@@ -54,6 +54,20 @@ fn unposed(d: &Dancer, t: f64) -> (SkeletonControl, Vec<Point>) {
     (plain, derived)
 }
 
+/// Skeleton control of `d` without poses, its derived skeleton at `t`, and that skeleton
+/// with the second leg swung by `degrees` at the hip: the pose the tests set at `t`.
+fn leg_swung(d: &Dancer, t: f64, degrees: f64) -> (SkeletonControl, Vec<Point>, Vec<Point>) {
+    let (plain, derived) = unposed(d, t);
+    let pose = swing(
+        &d.skeleton,
+        &derived,
+        "skeleton-legs",
+        1,
+        degrees.to_radians(),
+    );
+    (plain, derived, pose)
+}
+
 /// Skeleton control of `d` with one pose, `joints` at `t`.
 fn posed(d: &Dancer, t: f64, joints: Vec<Point>) -> SkeletonControl {
     SkeletonControl::new(&d.meshes, d.skeleton.clone(), &[Pose { t, joints }])
@@ -84,15 +98,8 @@ fn a_pose_is_met_at_its_frame_and_the_ends_stay_exact() {
     let d = dancer("source.svg");
     let m = &d.meshes;
     let tc = 0.5;
-    let (_, derived) = unposed(&d, tc);
     // Kick the second leg up by 35° and raise the first arm by 30°.
-    let pose = swing(
-        &d.skeleton,
-        &derived,
-        "skeleton-legs",
-        1,
-        -35f64.to_radians(),
-    );
+    let (_, derived, pose) = leg_swung(&d, tc, -35.0);
     let pose = swing(&d.skeleton, &pose, "skeleton-arms", 0, 30f64.to_radians());
     let control = posed(&d, tc, pose.clone());
     assert!(control.is_active());
@@ -196,14 +203,7 @@ fn a_lower_body_skeleton_leaves_the_upper_body_alone() {
     let d = dancer("source-lower.svg");
     let m = &d.meshes;
     let tc = 0.5;
-    let (plain, derived) = unposed(&d, tc);
-    let pose = swing(
-        &d.skeleton,
-        &derived,
-        "skeleton-legs",
-        1,
-        -30f64.to_radians(),
-    );
+    let (plain, _, pose) = leg_swung(&d, tc, -30.0);
     let control = posed(&d, tc, pose);
     // Vertices above the chest (y < 140 in the source: head and arms) are far from the hip and
     // legs.
@@ -273,14 +273,7 @@ fn the_bundled_poses_morph_without_inverted_triangles() {
 fn frames_solved_together_have_the_bits_of_lone_frames() {
     let d = dancer("source.svg");
     let tc = 0.5;
-    let (plain, derived) = unposed(&d, tc);
-    let pose = swing(
-        &d.skeleton,
-        &derived,
-        "skeleton-legs",
-        1,
-        -35f64.to_radians(),
-    );
+    let (plain, _, pose) = leg_swung(&d, tc, -35.0);
     let posed = posed(&d, tc, pose);
     for (name, control) in [("unposed", &plain), ("posed", &posed)] {
         for count in [1usize, 3, 8, 9, 17] {
