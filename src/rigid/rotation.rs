@@ -78,14 +78,8 @@ impl Prim {
         self.outside.clear();
         self.outside
             .extend(rest.iter().map(|&v| (v, link_key(angles, first, v))));
-        while !self.outside.is_empty() {
-            let (k, &(v, key)) = self
-                .outside
-                .iter()
-                .enumerate()
-                .min_by_key(|(_, &(_, key))| key)
-                .expect("not empty");
-            self.outside.swap_remove(k);
+        while let Some(k) = (0..self.outside.len()).min_by_key(|&k| self.outside[k].1) {
+            let (v, key) = self.outside.swap_remove(k);
             if key != u128::MAX {
                 keys.push(key);
             }
