@@ -315,24 +315,24 @@ struct PartGroup {
 }
 
 /// The extra-row targets and adjustments of a batch's frames, laid end to end (either empty
-/// for none), as [`DiscRigid::at_many_adjusted`] takes them.
+/// for none), as [`DiscRigid::at_many_adjusted`] takes them: `rows` targets and `points`
+/// adjustments per frame.
 struct Lanes<'a> {
     targets: &'a [Point],
     adjust: &'a [Point],
-    frames: usize,
+    rows: usize,
+    points: usize,
 }
 
 impl<'a> Lanes<'a> {
     /// Frame `k`'s extra-row targets (empty for none).
     fn targets(&self, k: usize) -> &'a [Point] {
-        let r = self.targets.len() / self.frames.max(1);
-        &self.targets[k * r..(k + 1) * r]
+        &self.targets[k * self.rows..(k + 1) * self.rows]
     }
 
     /// Frame `k`'s adjustments, if the frames have them.
     fn adjust(&self, k: usize) -> Option<&'a [Point]> {
-        let n = self.adjust.len() / self.frames.max(1);
-        (n > 0).then(|| &self.adjust[k * n..(k + 1) * n])
+        (self.points > 0).then(|| &self.adjust[k * self.points..(k + 1) * self.points])
     }
 }
 
@@ -642,26 +642,22 @@ impl DiscRigid {
         if n == 0 {
             return;
         }
-        let per = |v: &[Point], k: usize| -> usize {
-            if v.is_empty() {
-                0
-            } else {
-                v.len() / ts.len() * k
-            }
-        };
+        let frames = ts.len().max(1);
+        let (rows, points) = (targets.len() / frames, adjust.len() / frames);
         for (b, (ts, out)) in ts
             .chunks(MAX_LANES)
             .zip(out.chunks_mut(MAX_LANES * n))
             .enumerate()
         {
-            let first = b * MAX_LANES;
+            let (first, end) = (b * MAX_LANES, b * MAX_LANES + ts.len());
             let lanes = Lanes {
-                targets: &targets[per(targets, first)..per(targets, first + ts.len())],
-                adjust: &adjust[per(adjust, first)..per(adjust, first + ts.len())],
-                frames: ts.len(),
+                targets: &targets[first * rows..end * rows],
+                adjust: &adjust[first * points..end * points],
+                rows,
+                points,
             };
             match ts.len() {
-                1 => self.at_adjusted(ts[0], lanes.targets, lanes.adjust(0), out, ws, repair),
+                1 => self.at_adjusted(ts[0], lanes.targets(0), lanes.adjust(0), out, ws, repair),
                 2 => self.batch::<2>(ts, &lanes, out, ws, repair),
                 3 => self.batch::<3>(ts, &lanes, out, ws, repair),
                 4 => self.batch::<4>(ts, &lanes, out, ws, repair),
@@ -685,8 +681,8 @@ impl DiscRigid {
     ) {
         let ts: [f64; K] = std::array::from_fn(|k| ts[k]);
         let targets: [&[Point]; K] = std::array::from_fn(|k| lanes.targets(k));
-        let adjust: Option<[&[Point]; K]> = (!lanes.adjust.is_empty())
-            .then(|| std::array::from_fn(|k| lanes.adjust(k).unwrap_or(&[])));
+        let adjust: Option<[&[Point]; K]> = (lanes.points > 0)
+            .then(|| std::array::from_fn(|k| lanes.adjust(k).unwrap_or_default()));
         let rows = self.system.lanes::<K>(&mut ws.solve);
         self.assemble(ts, targets, adjust, rows);
         self.system.solve_lanes::<K>(&mut ws.solve);
