@@ -206,18 +206,25 @@ fn check_vertex_budget(source: &Drawing, target: &Drawing, opts: &MorphOptions) 
 
 /// Builds compatible triangulations of two drawings (§3, §5).
 pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<Compatible> {
-    build_checked(source, target, opts).map(|(c, _)| c)
+    build_accepted(source, target, opts, |_, _| Ok(())).map(|(c, ())| c)
 }
 
-/// [`build`], with the disc interpolator of the meshes it returns ([`Compatible::interpolator`],
-/// set up for the fold check that chose them), for a caller that checks their motion further:
-/// automatic mode reads its frames again rather than setting it up a second time. `None` when
-/// the interpolator cannot be set up (the meshes are returned all the same).
-pub(crate) fn build_checked(
+/// [`build`], then `accept` on the meshes it returns, given the disc interpolator that the
+/// fold check which chose them set up ([`Compatible::interpolator`]; `None` when it cannot be
+/// set up): automatic mode checks their motion further and reads its frames again rather than
+/// setting it up a second time.
+///
+/// [`build`] picks the harmonic map's own mesh or the relaxed one by counting the frames each
+/// folds (63 frames with fold repair, the dearest check on meshes that fold). When the
+/// harmonic map's mesh fails `accept`, the relaxed one is tried with `accept` first: if it
+/// fails too, neither pick can be accepted and nothing is counted (the error is then the
+/// first mesh's). Otherwise the result is what `accept` makes of [`build`]'s mesh.
+pub(crate) fn build_accepted<T>(
     source: &Drawing,
     target: &Drawing,
     opts: &MorphOptions,
-) -> Result<(Compatible, Option<Interpolator>)> {
+    accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
+) -> Result<(Compatible, T)> {
     check_vertex_budget(source, target, opts)?;
     let (tol, pairs) = curve_pairs(source, target, opts)?;
     let fix = |e| name_files(e, source, target);
@@ -230,28 +237,46 @@ pub(crate) fn build_checked(
         tolerances: tol,
         area_region: None,
     };
+    let relaxed = || {
+        let mut r = plain.clone();
+        relax_mapped(&mut r.meshes, opts.triangulated);
+        let motion = r.interpolator(Method::Disc);
+        (r, motion)
+    };
     // The harmonic map's own mesh unless its interpolation folds where the relaxed one folds
     // less (both after fold repair).
     let Ok(plain_motion) = plain.interpolator(Method::Disc) else {
         // No interpolation to check counts as folding everywhere: the relaxed mesh is better
         // if it can be set up at all.
-        let mut relaxed = plain.clone();
-        relax_mapped(&mut relaxed.meshes, opts.triangulated);
-        return Ok(match relaxed.interpolator(Method::Disc) {
-            Ok(i) => (relaxed, Some(i)),
-            Err(_) => (plain, None),
-        });
+        return match relaxed() {
+            (r, Ok(i)) => accept(&r, Some(&i)).map(|x| (r, x)),
+            (_, Err(_)) => accept(&plain, None).map(|x| (plain, x)),
+        };
+    };
+    let plain_accepted = match accept(&plain, Some(&plain_motion)) {
+        Ok(x) => x,
+        Err(e) => {
+            // Only the relaxed mesh can pass, and only if the count picks it.
+            let (r, Ok(i)) = relaxed() else {
+                return Err(e);
+            };
+            let x = accept(&r, Some(&i)).map_err(|_| e.clone())?;
+            let folds = folded_frames(&plain, &plain_motion, usize::MAX);
+            return if folds > 0 && folded_frames(&r, &i, folds) < folds {
+                Ok((r, x))
+            } else {
+                Err(e)
+            };
+        }
     };
     let folds = folded_frames(&plain, &plain_motion, usize::MAX);
     if folds == 0 {
-        return Ok((plain, Some(plain_motion)));
+        return Ok((plain, plain_accepted));
     }
-    let mut relaxed = plain.clone();
-    relax_mapped(&mut relaxed.meshes, opts.triangulated);
-    Ok(match relaxed.interpolator(Method::Disc) {
-        Ok(i) if folded_frames(&relaxed, &i, folds) < folds => (relaxed, Some(i)),
-        _ => (plain, Some(plain_motion)),
-    })
+    match relaxed() {
+        (r, Ok(i)) if folded_frames(&r, &i, folds) < folds => accept(&r, Some(&i)).map(|x| (r, x)),
+        _ => Ok((plain, plain_accepted)),
+    }
 }
 
 #[cfg(test)]
@@ -272,6 +297,61 @@ mod tests {
         }
         let e = name_files(Error::input(crate::Drawings::Pair, "x"), &s, &t);
         assert_eq!(e.to_string(), "a.svg → b.svg: x");
+    }
+
+    #[test]
+    fn accepting_while_building_gives_what_accepting_the_built_meshes_gives() {
+        // `build_accepted` tries `accept` on both candidate meshes before it counts their
+        // folds; whatever `accept` says, the outcome must be `accept` of `build`'s meshes.
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/");
+        for pair in ["u-to-s", "star-to-blob", "leaf-to-butterfly"] {
+            let read = |side: &str| {
+                let path = std::path::PathBuf::from(format!("{dir}{pair}/{side}.svg"));
+                Drawing::open(&path, &ReadOptions::default()).unwrap()
+            };
+            let (s, t) = (read("source"), read("target"));
+            let opts = MorphOptions::default();
+            let built = build(&s, &t, &opts).unwrap();
+            let (tol, pairs) = curve_pairs(&s, &t, &opts).unwrap();
+            let tri = triangulate(&pairs, &tol, opts.triangulated).unwrap();
+            let (harmonic, _) = composite_map(&tri, &pairs, &tol, &opts.mapping).unwrap();
+            let same = |a: &CompatibleMeshes, b: &CompatibleMeshes| {
+                a.source == b.source && a.target == b.target && a.triangles == b.triangles
+            };
+            let is_harmonic = |c: &Compatible| same(&c.meshes, &harmonic);
+            let rules: [(&str, &dyn Fn(&Compatible) -> bool); 4] = [
+                ("every mesh", &|_| true),
+                ("no mesh", &|_| false),
+                ("the harmonic map's mesh", &|c| is_harmonic(c)),
+                ("the relaxed mesh", &|c| !is_harmonic(c)),
+            ];
+            for (name, passes) in rules {
+                let accept = |c: &Compatible, motion: Option<&Interpolator>| {
+                    assert!(motion.is_some(), "{pair}: the fixture's meshes interpolate");
+                    if passes(c) {
+                        Ok(c.meshes.source.len())
+                    } else {
+                        Err(Error::input("<test>", "rejected"))
+                    }
+                };
+                let got = build_accepted(&s, &t, &opts, accept);
+                match (passes(&built), got) {
+                    (true, Ok((c, n))) => {
+                        assert!(
+                            same(&c.meshes, &built.meshes),
+                            "{pair}, {name}: another mesh"
+                        );
+                        assert_eq!(n, built.meshes.source.len());
+                    }
+                    (false, Err(e)) => assert!(e.to_string().contains("rejected")),
+                    (want, got) => panic!(
+                        "{pair}, accepting {name}: wanted {}, got {:?}",
+                        if want { "the built mesh" } else { "an error" },
+                        got.map(|(_, n)| n)
+                    ),
+                }
+            }
+        }
     }
 
     #[test]

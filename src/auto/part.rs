@@ -18,7 +18,7 @@
 //! Holes that are not aligned as features still morph inside the shape (see
 //! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
 
-use crate::compatible::{build_checked, Compatible, MorphOptions};
+use crate::compatible::{build_accepted, Compatible, MorphOptions};
 use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
@@ -285,8 +285,7 @@ pub(crate) fn build_part(
         for triangulated in [Side::Source, Side::Target] {
             let mut o = inputs.opts.clone();
             o.triangulated = triangulated;
-            let checked = build_checked(&s, &t, &o)
-                .and_then(|(c, motion)| moves_without_folding(&c, motion.as_ref()).map(|r| (c, r)));
+            let checked = build_accepted(&s, &t, &o, moves_without_folding);
             match checked {
                 Ok((c, repair)) => {
                     let features = holes
