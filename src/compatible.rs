@@ -319,7 +319,8 @@ mod tests {
                 a.source == b.source && a.target == b.target && a.triangles == b.triangles
             };
             let is_harmonic = |c: &Compatible| same(&c.meshes, &harmonic);
-            let rules: [(&str, &dyn Fn(&Compatible) -> bool); 4] = [
+            type Rule<'a> = (&'a str, &'a dyn Fn(&Compatible) -> bool);
+            let rules: [Rule<'_>; 4] = [
                 ("every mesh", &|_| true),
                 ("no mesh", &|_| false),
                 ("the harmonic map's mesh", &|c| is_harmonic(c)),
