@@ -24,9 +24,9 @@ use super::untangle::Untangler;
 use crate::correspondence::CurvePair;
 use crate::error::ProblemKind;
 use crate::geometry::Point;
-use crate::mesh::{count_inverted, CompatibleMeshes, Side};
+use crate::mesh::{CompatibleMeshes, Side};
 use crate::tolerance::Tolerances;
-use crate::triangulation::validate::{crossing_curves, CurveRef};
+use crate::triangulation::validate::{crossing_curves, curves_cross, CurveRef};
 use crate::triangulation::{validate_curves, Triangulation};
 use crate::{Error, Result};
 
@@ -240,9 +240,9 @@ fn walk(
 ) -> Result<Vec<Point>> {
     let mut current = tri.points.clone();
     let mut next = current.clone();
-    let valid = |v: &[Point]| {
-        count_inverted(&tri.triangles, v) == 0 && !tri.triangles.iter().any(|t| is_bad(t, v))
-    };
+    // No triangle inverted or a sliver (a bad triangle includes every inverted one, so this
+    // is also the exact orientation test).
+    let valid = |v: &[Point]| !tri.triangles.iter().any(|t| is_bad(t, v));
     let mut curves: Vec<Vec<Point>> = Vec::new();
     let min_step = opts.min_step.max(f64::EPSILON);
     let (mut t, mut h, mut maps) = (0.0f64, h_max, 0usize);
@@ -265,7 +265,7 @@ fn walk(
                 .zip(pairs)
                 .map(|(c, p)| (c.as_slice(), p.closed))
                 .collect();
-            !crossing_curves(&refs).is_empty()
+            curves_cross(&refs)
         };
         // Curves that cross at t1 block this path whatever the step: the walk must pass t1.
         if crossing {

@@ -44,37 +44,30 @@ pub(crate) fn crossing_curves(curves: &[CurveRef<'_>]) -> Vec<(usize, usize)> {
     pairs
 }
 
+/// Whether any two curve edges cross or touch (as in [`first_crossing`]): the composite
+/// mapping's test of every step's intermediate curves. It tests the grid's candidate pairs as
+/// they come, stopping at the first hit, without collecting and sorting them (a pair shared by
+/// two cells is tested twice, which cannot change the answer).
+pub(crate) fn curves_cross(curves: &[CurveRef<'_>]) -> bool {
+    let Some(grid) = EdgeGrid::new(curves) else {
+        return false;
+    };
+    let crossed = grid.cells().any(|cell| {
+        cell.iter().enumerate().any(|(i, &s1)| {
+            cell[i + 1..]
+                .iter()
+                .any(|&s2| grid.hit(curves, s1.min(s2), s1.max(s2)))
+        })
+    });
+    crossed
+}
+
 fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef)> {
-    let mut segs: Vec<(EdgeRef, Point, Point)> = Vec::new();
-    for (c, &(pts, closed)) in curves.iter().enumerate() {
-        let n = pts.len();
-        for k in 0..edge_count(pts, closed) {
-            segs.push(((c, k), pts[k], pts[(k + 1) % n]));
-        }
-    }
-    let Some((lo, hi)) = bounding_box(segs.iter().flat_map(|s| [s.1, s.2])) else {
+    let Some(grid) = EdgeGrid::new(curves) else {
         return Vec::new();
     };
-    let cells = ((segs.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
-    let ext = (hi - lo).max(Point::splat(f64::MIN_POSITIVE));
-    let cell_of = |p: Point| {
-        let q = (p - lo) / ext * cells as f64;
-        (
-            (q.x.max(0.0) as usize).min(cells - 1),
-            (q.y.max(0.0) as usize).min(cells - 1),
-        )
-    };
-    let mut grid: Vec<Vec<u32>> = vec![Vec::new(); cells * cells];
-    for (s, &(_, a, b)) in segs.iter().enumerate() {
-        let (c0, c1) = (cell_of(a.min(b)), cell_of(a.max(b)));
-        for x in c0.0..=c1.0 {
-            for y in c0.1..=c1.1 {
-                grid[y * cells + x].push(s as u32);
-            }
-        }
-    }
     let mut pairs: Vec<(u32, u32)> = Vec::new();
-    for cell in &grid {
+    for cell in grid.cells() {
         for (i, &s1) in cell.iter().enumerate() {
             for &s2 in &cell[i + 1..] {
                 pairs.push((s1.min(s2), s1.max(s2)));
@@ -85,24 +78,97 @@ fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef
     pairs.dedup();
     let mut found = Vec::new();
     for (s1, s2) in pairs {
-        let ((c1, k1), a, b) = segs[s1 as usize];
-        let ((c2, k2), c, d) = segs[s2 as usize];
-        let hit =
-            if c1 == c2 && adjacent(k1, k2, edge_count(curves[c1].0, curves[c1].1), curves[c1].1) {
-                // Shared vertex: only a fold-back (zero angle between the edges) is a crossing.
-                let (v, x, y) = if b == c { (b, a, d) } else { (a, b, c) };
-                orient2d(x, v, y) == 0.0 && (x - v).dot(y - v) > 0.0
-            } else {
-                segments_intersect(a, b, c, d)
-            };
-        if hit {
-            found.push(((c1, k1), (c2, k2)));
+        if grid.hit(curves, s1, s2) {
+            found.push((grid.segs[s1 as usize].0, grid.segs[s2 as usize].0));
             if first_only {
                 break;
             }
         }
     }
     found
+}
+
+/// The curves' edges binned in a uniform grid over their bounding box (about one edge per
+/// cell), each cell listing the edges whose box overlaps it, in edge order.
+struct EdgeGrid {
+    /// Every edge: which it is and its two ends.
+    segs: Vec<(EdgeRef, Point, Point)>,
+    /// Where each cell's edges start in `items` (one more entry than cells).
+    start: Vec<u32>,
+    /// The edges of every cell, cell after cell.
+    items: Vec<u32>,
+}
+
+impl EdgeGrid {
+    /// `None` when the curves have no edge.
+    fn new(curves: &[CurveRef<'_>]) -> Option<Self> {
+        let mut segs: Vec<(EdgeRef, Point, Point)> = Vec::new();
+        for (c, &(pts, closed)) in curves.iter().enumerate() {
+            let n = pts.len();
+            for k in 0..edge_count(pts, closed) {
+                segs.push(((c, k), pts[k], pts[(k + 1) % n]));
+            }
+        }
+        let (lo, hi) = bounding_box(segs.iter().flat_map(|s| [s.1, s.2]))?;
+        let cells = ((segs.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let ext = (hi - lo).max(Point::splat(f64::MIN_POSITIVE));
+        let cell_of = |p: Point| {
+            let q = (p - lo) / ext * cells as f64;
+            (
+                (q.x.max(0.0) as usize).min(cells - 1),
+                (q.y.max(0.0) as usize).min(cells - 1),
+            )
+        };
+        // Each edge's range of cells, then a counting sort of (cell, edge) by cell.
+        let ranges: Vec<((usize, usize), (usize, usize))> = segs
+            .iter()
+            .map(|&(_, a, b)| (cell_of(a.min(b)), cell_of(a.max(b))))
+            .collect();
+        let mut start = vec![0u32; cells * cells + 1];
+        for &(c0, c1) in &ranges {
+            for y in c0.1..=c1.1 {
+                for x in c0.0..=c1.0 {
+                    start[y * cells + x + 1] += 1;
+                }
+            }
+        }
+        for k in 1..start.len() {
+            start[k] += start[k - 1];
+        }
+        let mut next = start.clone();
+        let mut items = vec![0u32; start[cells * cells] as usize];
+        for (s, &(c0, c1)) in ranges.iter().enumerate() {
+            for y in c0.1..=c1.1 {
+                for x in c0.0..=c1.0 {
+                    let slot = &mut next[y * cells + x];
+                    items[*slot as usize] = s as u32;
+                    *slot += 1;
+                }
+            }
+        }
+        Some(EdgeGrid { segs, start, items })
+    }
+
+    /// Each cell's edges.
+    fn cells(&self) -> impl Iterator<Item = &[u32]> {
+        self.start
+            .windows(2)
+            .map(|w| &self.items[w[0] as usize..w[1] as usize])
+    }
+
+    /// Whether edges `s1 < s2` cross or touch; two consecutive edges of one curve only when
+    /// one folds back onto the other.
+    fn hit(&self, curves: &[CurveRef<'_>], s1: u32, s2: u32) -> bool {
+        let ((c1, k1), a, b) = self.segs[s1 as usize];
+        let ((c2, k2), c, d) = self.segs[s2 as usize];
+        if c1 == c2 && adjacent(k1, k2, edge_count(curves[c1].0, curves[c1].1), curves[c1].1) {
+            // Shared vertex: only a fold-back (zero angle between the edges) is a crossing.
+            let (v, x, y) = if b == c { (b, a, d) } else { (a, b, c) };
+            orient2d(x, v, y) == 0.0 && (x - v).dot(y - v) > 0.0
+        } else {
+            segments_intersect(a, b, c, d)
+        }
+    }
 }
 
 /// The first pair of vertices (as `(curve, vertex)` pairs) of different curves, or of one curve,
@@ -170,5 +236,40 @@ mod tests {
         assert_eq!(first_crossing(&[(&circle, true)]), None);
         let chord = [p(0.0, -2.0), p(0.0, 0.0)];
         assert!(first_crossing(&[(&circle, true), (&chord, false)]).is_some());
+    }
+
+    /// Crossings by brute force over every pair of edges, with the same predicates.
+    fn crossing_by_every_pair(curves: &[CurveRef<'_>]) -> bool {
+        let grid = EdgeGrid::new(curves);
+        let Some(g) = grid else { return false };
+        let n = g.segs.len() as u32;
+        (0..n).any(|s1| (s1 + 1..n).any(|s2| g.hit(curves, s1, s2)))
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+        /// The composite walk's yes-or-no test agrees with the full list of crossings and with
+        /// testing every pair of edges: random polylines on a coarse grid (so that touching,
+        /// collinear and repeated points are common), open or closed.
+        #[test]
+        fn curves_cross_is_whether_any_pair_crosses(
+            curves in proptest::collection::vec(
+                (proptest::collection::vec((-4i32..5, -4i32..5), 0..14), proptest::bool::ANY),
+                1..4,
+            ),
+            fine in proptest::bool::ANY,
+        ) {
+            let scale = if fine { 0.37 } else { 1.0 };
+            let pts: Vec<(Vec<Point>, bool)> = curves
+                .iter()
+                .map(|(c, closed)| {
+                    (c.iter().map(|&(x, y)| p(f64::from(x) * scale, f64::from(y))).collect(), *closed)
+                })
+                .collect();
+            let refs: Vec<CurveRef<'_>> = pts.iter().map(|(c, closed)| (c.as_slice(), *closed)).collect();
+            let any = curves_cross(&refs);
+            proptest::prop_assert_eq!(any, !crossing_curves(&refs).is_empty());
+            proptest::prop_assert_eq!(any, crossing_by_every_pair(&refs));
+        }
     }
 }

@@ -1,8 +1,8 @@
 use super::*;
 use crate::geometry::bounding_box;
 use crate::mapping::samples::{bent_band, circle, pair, turning_bar};
-use crate::mesh::sanity_check;
 use crate::mesh::Side;
+use crate::mesh::{count_inverted, sanity_check};
 use crate::triangulation::tests::subdivided;
 use crate::triangulation::triangulate;
 use std::f64::consts::PI;
