@@ -21,18 +21,26 @@ const MIN_CARRIERS: usize = 4;
 /// Carriers lie within this multiple of the feature vertex's distance to the boundary.
 const REACH: f64 = 2.0;
 
-/// One side's attachment of a feature vertex: its position and the weighted carrier vertices.
+/// One side's attachment of a feature vertex: its position, the weighted carrier vertices and
+/// what [`carry`] needs of their positions on this side, which do not change with `t`.
 #[derive(Debug, Clone)]
 struct Attachment {
     point: Point,
+    /// The carriers: boundary vertex, weight.
     carriers: Vec<(u32, f64)>,
+    /// Per carrier, its offset from the weighted centroid `centre`.
+    offsets: Vec<Point>,
+    /// The sum of the weights.
+    weight: f64,
+    /// The carriers' weighted centroid.
+    centre: Point,
+    /// The weighted sum of the offsets' squared lengths.
+    spread: f64,
 }
 
 /// Feature vertices attached to the boundary at both ends of the morph.
 #[derive(Debug, Clone)]
 pub(crate) struct Carried {
-    /// Boundary at t = 0 and t = 1.
-    boundary: [Vec<Point>; 2],
     /// Per feature, per vertex: attachments at t = 0 and t = 1.
     features: Vec<Vec<[Attachment; 2]>>,
 }
@@ -60,35 +68,55 @@ fn attach(boundary: &[Point], p: Point) -> Attachment {
         .iter()
         .map(|&(d2, i)| (i, 1.0 / d2.max(floor) - 1.0 / r2))
         .collect();
-    Attachment { point: p, carriers }
+    // The side's own half of the best fit, summed in the carriers' order as [`carry`] did
+    // every step before (so every step keeps its bits).
+    let (mut weight, mut centre) = (0.0, Point::ZERO);
+    for &(i, wi) in &carriers {
+        weight += wi;
+        centre += boundary[i as usize] * wi;
+    }
+    let centre = centre / weight;
+    let offsets: Vec<Point> = carriers
+        .iter()
+        .map(|&(i, _)| boundary[i as usize] - centre)
+        .collect();
+    let spread = carriers
+        .iter()
+        .zip(&offsets)
+        .fold(0.0, |total, (&(_, wi), x)| total + wi * x.length_squared());
+    Attachment {
+        point: p,
+        carriers,
+        offsets,
+        weight,
+        centre,
+        spread,
+    }
 }
 
-/// Where the weighted best-fit similarity carrying the carriers from `from` to `to` takes the
-/// attached point.
-fn carry(a: &Attachment, from: &[Point], to: &[Point]) -> Point {
-    let (mut w, mut cf, mut ct) = (0.0, Point::ZERO, Point::ZERO);
-    for &(i, wi) in &a.carriers {
-        w += wi;
-        cf += from[i as usize] * wi;
-        ct += to[i as usize] * wi;
-    }
-    if w <= 0.0 {
+/// Where the weighted best-fit similarity carrying the carriers from the side they were
+/// attached on to `to` takes the attached point.
+fn carry(a: &Attachment, to: &[Point]) -> Point {
+    if a.weight <= 0.0 {
         return a.point;
     }
-    let (cf, ct) = (cf / w, ct / w);
-    // Complex least squares: (dot + i·cross) / Σ|x|² is scale times rotation.
-    let (mut xx, mut dot, mut cross) = (0.0, 0.0, 0.0);
+    let mut ct = Point::ZERO;
     for &(i, wi) in &a.carriers {
-        let (x, y) = (from[i as usize] - cf, to[i as usize] - ct);
-        xx += wi * x.length_squared();
+        ct += to[i as usize] * wi;
+    }
+    let ct = ct / a.weight;
+    // Complex least squares: (dot + i·cross) / Σ|x|² is scale times rotation.
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for (&(i, wi), &x) in a.carriers.iter().zip(&a.offsets) {
+        let y = to[i as usize] - ct;
         dot += wi * x.dot(y);
         cross += wi * x.perp_dot(y);
     }
-    let d = a.point - cf;
-    if xx <= 0.0 {
+    let d = a.point - a.centre;
+    if a.spread <= 0.0 {
         return ct + d;
     }
-    let (c, s) = (dot / xx, cross / xx);
+    let (c, s) = (dot / a.spread, cross / a.spread);
     ct + Point::new(c * d.x - s * d.y, s * d.x + c * d.y)
 }
 
@@ -113,10 +141,7 @@ impl Carried {
                     .collect()
             })
             .collect();
-        Some(Carried {
-            boundary: [b0.to_vec(), b1.to_vec()],
-            features,
-        })
+        Some(Carried { features })
     }
 
     /// The features at `t`, given the intermediate boundary `boundary_t` (same vertex count),
@@ -125,8 +150,8 @@ impl Carried {
         for (o, f) in out.iter_mut().zip(&self.features) {
             o.clear();
             o.extend(f.iter().map(|[a0, a1]| {
-                let p0 = carry(a0, &self.boundary[0], boundary_t);
-                let p1 = carry(a1, &self.boundary[1], boundary_t);
+                let p0 = carry(a0, boundary_t);
+                let p1 = carry(a1, boundary_t);
                 p0 * (1.0 - t) + p1 * t
             }));
         }
@@ -172,6 +197,55 @@ mod tests {
             let q = Point::new(p.0 as f64 * 0.5, p.1 as f64);
             let bits = |c: &[(u32, f64)]| c.iter().map(|&(i, w)| (i, w.to_bits())).collect::<Vec<_>>();
             prop_assert_eq!(bits(&attach(&b, q).carriers), bits(&attach_by_full_sort(&b, q)));
+        }
+    }
+
+    /// The best fit as first written: both sides' sums every time.
+    fn carry_both_sides(a: &Attachment, from: &[Point], to: &[Point]) -> Point {
+        let (mut w, mut cf, mut ct) = (0.0, Point::ZERO, Point::ZERO);
+        for &(i, wi) in &a.carriers {
+            w += wi;
+            cf += from[i as usize] * wi;
+            ct += to[i as usize] * wi;
+        }
+        if w <= 0.0 {
+            return a.point;
+        }
+        let (cf, ct) = (cf / w, ct / w);
+        let (mut xx, mut dot, mut cross) = (0.0, 0.0, 0.0);
+        for &(i, wi) in &a.carriers {
+            let (x, y) = (from[i as usize] - cf, to[i as usize] - ct);
+            xx += wi * x.length_squared();
+            dot += wi * x.dot(y);
+            cross += wi * x.perp_dot(y);
+        }
+        let d = a.point - cf;
+        if xx <= 0.0 {
+            return ct + d;
+        }
+        let (c, s) = (dot / xx, cross / xx);
+        ct + Point::new(c * d.x - s * d.y, s * d.x + c * d.y)
+    }
+
+    proptest! {
+        /// Carrying with the attached side's sums made once gives the bits of summing both
+        /// sides every time: random boundaries, moved anywhere (collapsed to a point too).
+        #[test]
+        fn carrying_keeps_the_bits_of_summing_both_sides(
+            boundary in proptest::collection::vec((-50.0f64..50.0, -50.0f64..50.0), 1..30),
+            moved in proptest::collection::vec((-50.0f64..50.0, -50.0f64..50.0), 30),
+            p in (-60.0f64..60.0, -60.0f64..60.0),
+            collapse in proptest::bool::ANY,
+        ) {
+            let b: Vec<Point> = boundary.iter().map(|&(x, y)| Point::new(x, y)).collect();
+            let to: Vec<Point> = moved[..b.len()]
+                .iter()
+                .map(|&(x, y)| if collapse { Point::new(1.5, -2.0) } else { Point::new(x, y) })
+                .collect();
+            let a = attach(&b, Point::new(p.0, p.1));
+            let bits = |q: Point| (q.x.to_bits(), q.y.to_bits());
+            prop_assert_eq!(bits(carry(&a, &to)), bits(carry_both_sides(&a, &b, &to)));
+            prop_assert_eq!(bits(carry(&a, &b)), bits(carry_both_sides(&a, &b, &b)));
         }
     }
 }
