@@ -7,10 +7,11 @@
 //! `t_k` (the metric changes every step; the sparsity pattern, and so the symbolic
 //! factorization, does not). A step whose harmonic map flips a triangle (exact orientation test)
 //! is first repaired by local untangling of the folded triangles' free vertices (`untangle.rs`);
-//! if that fails, or the intermediate curves cross, the step is rejected and halved; after an
-//! accepted step the step grows back. When the BSM path cannot be followed, the same walk is
-//! tried with the BSM's features carried by its boundary ([`ShapeModel::carried`]: features in a
-//! bending arm swing with it), then with straight-line curves. Finally, triangles that the steps
+//! if that fails, or the intermediate curves cross, the step is rejected and halved; after a
+//! step that needed no untangling, or two accepted steps in a row, the step doubles back. When
+//! the BSM path cannot be followed, the same walk is tried with the BSM's features carried by
+//! its boundary ([`ShapeModel::carried`]: features in a bending arm swing with it), then with
+//! straight-line curves. Finally, triangles that the steps
 //! left much thinner than they were get their free vertices moved to improve their shapes
 //! (`untangle.rs`), never flipping one.
 //! When the curves' spatial relation changes between source and target — a feature passing
@@ -245,19 +246,24 @@ fn walk(
     let valid = |v: &[Point]| !tri.triangles.iter().any(|t| is_bad(t, v));
     let mut curves: Vec<Vec<Point>> = Vec::new();
     let min_step = opts.min_step.max(f64::EPSILON);
-    let (mut t, mut h, mut maps) = (0.0f64, h_max, 0usize);
+    let (mut t, mut maps) = (0.0f64, 0usize);
+    let mut step = Step::new(h_max);
     while t < 1.0 {
         if maps >= opts.max_steps {
             return Err(failure(
                 model,
                 pairs,
-                t + h,
+                t + step.h,
                 &mut curves,
                 " within the maximum number of steps",
             ));
         }
         maps += 1;
-        let t1 = if t + h >= 1.0 - 1e-12 { 1.0 } else { t + h };
+        let t1 = if t + step.h >= 1.0 - 1e-12 {
+            1.0
+        } else {
+            t + step.h
+        };
         model.curves_at(t1, &mut curves);
         let crossing = {
             let refs: Vec<CurveRef<'_>> = curves
@@ -272,7 +278,7 @@ fn walk(
             stats.rejected_steps += 1;
             return Err(failure(model, pairs, t1, &mut curves, ""));
         }
-        let ok = {
+        let (ok, clean) = {
             next.copy_from_slice(&current);
             for (c, pts) in tri.curves.iter().zip(&curves) {
                 for (&v, &q) in c.vertices.iter().zip(pts) {
@@ -280,23 +286,67 @@ fn walk(
                 }
             }
             solver.harmonic.solve(&current, &mut next)?;
-            valid(&next)
-                || (solver.untangler.untangle(&tri.triangles, &mut next, is_bad) && valid(&next))
+            if valid(&next) {
+                (true, true)
+            } else {
+                let untangled =
+                    solver.untangler.untangle(&tri.triangles, &mut next, is_bad) && valid(&next);
+                (untangled, false)
+            }
         };
         if ok {
             std::mem::swap(&mut current, &mut next);
             t = t1;
             stats.steps += 1;
-            h = (2.0 * h).min(h_max);
+            step.accepted(clean);
         } else {
             stats.rejected_steps += 1;
-            h *= 0.5;
-            if h < min_step {
+            step.rejected();
+            if step.h < min_step {
                 return Err(flip_report(model, pairs, tri, t1, &next, &mut curves));
             }
         }
     }
     Ok(current)
+}
+
+/// The step control of a walk: halved when a map is rejected; doubled back (up to the largest
+/// step) after a map that needed no untangling, or after two accepted maps in a row. A step
+/// that folded and was untangled is at the edge of what the mesh takes: doubling it at once
+/// mostly costs a rejected map whose untangling ran every sweep before it failed, the dearest
+/// map of a walk (issue 16: a third of the CPU of the slowest corpus pairs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Step {
+    /// The step in `t` the next map tries.
+    h: f64,
+    /// The largest step.
+    h_max: f64,
+    /// Whether the last map was accepted.
+    accepted_before: bool,
+}
+
+impl Step {
+    fn new(h_max: f64) -> Self {
+        Step {
+            h: h_max,
+            h_max,
+            accepted_before: false,
+        }
+    }
+
+    /// After an accepted map; `clean` when it needed no untangling.
+    fn accepted(&mut self, clean: bool) {
+        if clean || self.accepted_before {
+            self.h = (2.0 * self.h).min(self.h_max);
+        }
+        self.accepted_before = true;
+    }
+
+    /// After a rejected map.
+    fn rejected(&mut self) {
+        self.h *= 0.5;
+        self.accepted_before = false;
+    }
 }
 
 /// Whether a triangle is inverted or a sliver ([`crate::geometry::inverted_or_sliver`]): such a

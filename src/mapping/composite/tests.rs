@@ -125,6 +125,24 @@ fn composing_avoids_the_folds_of_one_direct_map() {
 }
 
 #[test]
+fn a_step_that_needed_untangling_grows_only_after_another_accepted_one() {
+    let mut s = Step::new(0.25);
+    s.rejected();
+    s.rejected();
+    assert_eq!(s.h, 0.0625);
+    s.accepted(false);
+    assert_eq!(s.h, 0.0625, "untangled right after a rejection: kept");
+    s.accepted(false);
+    assert_eq!(s.h, 0.125, "a second accepted map in a row: doubled");
+    s.rejected();
+    s.accepted(true);
+    assert_eq!(s.h, 0.125, "a clean map: doubled at once");
+    s.accepted(true);
+    s.accepted(false);
+    assert_eq!(s.h, 0.25, "never beyond the largest step");
+}
+
+#[test]
 fn a_folding_step_is_untangled_instead_of_abandoned() {
     // One whole step with no halving allowed: the harmonic map alone folds (above), the local
     // untangling of its folded triangles makes it valid.
