@@ -64,6 +64,7 @@ impl Untangler {
     ) -> bool {
         let mut active: Vec<u32> = Vec::new();
         let mut stuck: Vec<u32> = Vec::new();
+        let mut scratch = Vec::new();
         // The triangles for which `bad` holds, kept up to date: only a moved vertex's
         // triangles can change.
         let mut tangled: Vec<u32> = (0..triangles.len() as u32)
@@ -93,7 +94,7 @@ impl Untangler {
             }
             stuck.clear();
             for &v in &active {
-                match self.best_position(v as usize, points) {
+                match self.best_position(v as usize, points, &mut scratch) {
                     Some((p, area)) => {
                         points[v as usize] = p;
                         if area <= 0.0 {
@@ -136,6 +137,7 @@ impl Untangler {
         // nothing new to gain.
         let mut changed = vec![true; self.fixed.len()];
         let mut now_changed = vec![false; self.fixed.len()];
+        let mut scratch = Vec::new();
         for _ in 0..IMPROVE_SWEEPS {
             let mut active: Vec<u32> = Vec::new();
             for (f, t) in triangles.iter().enumerate() {
@@ -162,7 +164,7 @@ impl Untangler {
                     .iter()
                     .fold(Point::ZERO, |a, &w| a + points[w as usize])
                     / ring.len().max(1) as f64;
-                let lp = self.best_position(v, points).map(|b| b.0);
+                let lp = self.best_position(v, points, &mut scratch).map(|b| b.0);
                 // Where each triangle of the star would put `v` to regain its rest shape (its
                 // opposite edge kept), averaged.
                 let mut shaped = Point::ZERO;
@@ -210,11 +212,17 @@ impl Untangler {
     /// Cramer solve (the systems' third column is all ones, and `x · 1 = x` exactly), so the
     /// result does not depend on these shortcuts (issue 16: this is the composite walk's hottest
     /// loop).
-    fn best_position(&self, v: usize, points: &[Point]) -> Option<(Point, f64)> {
+    /// `cons` is scratch space, reused from call to call.
+    fn best_position(
+        &self,
+        v: usize,
+        points: &[Point],
+        cons: &mut Vec<Constraint>,
+    ) -> Option<(Point, f64)> {
         // Doubled area of (v, a, b) = cross(a, b) + cross(v, a − b) = c + g·v, written relative
         // to the current position `o` for conditioning: c + g·o + g·(v − o).
         let o = points[v];
-        let mut cons: Vec<Constraint> = Vec::with_capacity(self.stars[v].len());
+        cons.clear();
         let mut scale = 0.0f64;
         for &[a, b] in &self.stars[v] {
             let (a, b) = (points[a as usize], points[b as usize]);
@@ -432,7 +440,7 @@ mod tests {
             let u = Untangler::new(&tris, &fixed);
             let bits = |r: Option<(Point, f64)>| r.map(|(p, z)| (p.x.to_bits(), p.y.to_bits(), z.to_bits()));
             proptest::prop_assert_eq!(
-                bits(u.best_position(0, &pts)),
+                bits(u.best_position(0, &pts, &mut Vec::new())),
                 bits(best_position_reference(&u.stars[0], pts[0], &pts))
             );
         }
