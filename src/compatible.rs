@@ -243,8 +243,11 @@ pub(crate) fn build_accepted<T>(
         let motion = r.interpolator(Method::Disc);
         (r, motion)
     };
-    // The harmonic map's own mesh unless its interpolation folds where the relaxed one folds
-    // less (both after fold repair).
+    // The harmonic map's own mesh unless its interpolation folds (`folds` frames) where the
+    // relaxed one folds less (both after fold repair).
+    let relaxed_is_picked = |r: &Compatible, motion: &Interpolator, folds: usize| {
+        folds > 0 && folded_frames(r, motion, folds) < folds
+    };
     let Ok(plain_motion) = plain.interpolator(Method::Disc) else {
         // No interpolation to check counts as folding everywhere: the relaxed mesh is better
         // if it can be set up at all.
@@ -262,7 +265,7 @@ pub(crate) fn build_accepted<T>(
             };
             let x = accept(&r, Some(&i)).map_err(|_| e.clone())?;
             let folds = folded_frames(&plain, &plain_motion, usize::MAX);
-            return if folds > 0 && folded_frames(&r, &i, folds) < folds {
+            return if relaxed_is_picked(&r, &i, folds) {
                 Ok((r, x))
             } else {
                 Err(e)
@@ -274,7 +277,7 @@ pub(crate) fn build_accepted<T>(
         return Ok((plain, plain_accepted));
     }
     match relaxed() {
-        (r, Ok(i)) if folded_frames(&r, &i, folds) < folds => accept(&r, Some(&i)).map(|x| (r, x)),
+        (r, Ok(i)) if relaxed_is_picked(&r, &i, folds) => accept(&r, Some(&i)).map(|x| (r, x)),
         _ => Ok((plain, plain_accepted)),
     }
 }
