@@ -52,13 +52,7 @@ pub(crate) fn curves_cross(curves: &[CurveRef<'_>]) -> bool {
     let Some(grid) = EdgeGrid::new(curves) else {
         return false;
     };
-    let crossed = grid.cells().any(|cell| {
-        cell.iter().enumerate().any(|(i, &s1)| {
-            cell[i + 1..]
-                .iter()
-                .any(|&s2| grid.hit(curves, s1.min(s2), s1.max(s2)))
-        })
-    });
+    let crossed = grid.candidates().any(|(s1, s2)| grid.hit(curves, s1, s2));
     crossed
 }
 
@@ -66,14 +60,7 @@ fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef
     let Some(grid) = EdgeGrid::new(curves) else {
         return Vec::new();
     };
-    let mut pairs: Vec<(u32, u32)> = Vec::new();
-    for cell in grid.cells() {
-        for (i, &s1) in cell.iter().enumerate() {
-            for &s2 in &cell[i + 1..] {
-                pairs.push((s1.min(s2), s1.max(s2)));
-            }
-        }
-    }
+    let mut pairs: Vec<(u32, u32)> = grid.candidates().collect();
     pairs.sort_unstable();
     pairs.dedup();
     let mut found = Vec::new();
@@ -94,8 +81,8 @@ struct EdgeGrid {
     /// Every edge: which it is and its two ends.
     segs: Vec<(EdgeRef, Point, Point)>,
     /// Where each cell's edges start in `items` (one more entry than cells).
-    start: Vec<u32>,
-    /// The edges of every cell, cell after cell.
+    start: Vec<usize>,
+    /// The edges of every cell, cell after cell (`mesh::compressed_rows`).
     items: Vec<u32>,
 }
 
@@ -119,41 +106,31 @@ impl EdgeGrid {
                 (q.y.max(0.0) as usize).min(cells - 1),
             )
         };
-        // Each edge's range of cells, then a counting sort of (cell, edge) by cell.
-        let ranges: Vec<((usize, usize), (usize, usize))> = segs
-            .iter()
-            .map(|&(_, a, b)| (cell_of(a.min(b)), cell_of(a.max(b))))
-            .collect();
-        let mut start = vec![0u32; cells * cells + 1];
-        for &(c0, c1) in &ranges {
+        // Each edge listed in every cell its box overlaps, edges in order within a cell.
+        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(segs.len() * 2);
+        for (s, &(_, a, b)) in segs.iter().enumerate() {
+            let (c0, c1) = (cell_of(a.min(b)), cell_of(a.max(b)));
             for y in c0.1..=c1.1 {
                 for x in c0.0..=c1.0 {
-                    start[y * cells + x + 1] += 1;
+                    entries.push(((y * cells + x) as u32, s as u32));
                 }
             }
         }
-        for k in 1..start.len() {
-            start[k] += start[k - 1];
-        }
-        let mut next = start.clone();
-        let mut items = vec![0u32; start[cells * cells] as usize];
-        for (s, &(c0, c1)) in ranges.iter().enumerate() {
-            for y in c0.1..=c1.1 {
-                for x in c0.0..=c1.0 {
-                    let slot = &mut next[y * cells + x];
-                    items[*slot as usize] = s as u32;
-                    *slot += 1;
-                }
-            }
-        }
+        let (start, items) = crate::mesh::compressed_rows(cells * cells, entries.iter().copied());
         Some(EdgeGrid { segs, start, items })
     }
 
-    /// Each cell's edges.
-    fn cells(&self) -> impl Iterator<Item = &[u32]> {
-        self.start
-            .windows(2)
-            .map(|w| &self.items[w[0] as usize..w[1] as usize])
+    /// The pairs of edges `(s1, s2)`, `s1 < s2`, that share a cell: every pair that can
+    /// cross, some more than once.
+    fn candidates(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.start.windows(2).flat_map(move |w| {
+            let cell = &self.items[w[0]..w[1]];
+            cell.iter().enumerate().flat_map(move |(i, &s1)| {
+                cell[i + 1..]
+                    .iter()
+                    .map(move |&s2| (s1.min(s2), s1.max(s2)))
+            })
+        })
     }
 
     /// Whether edges `s1 < s2` cross or touch; two consecutive edges of one curve only when
