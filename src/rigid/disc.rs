@@ -40,7 +40,7 @@ use super::assembly::{
     component_centroids, lerp_into, FactoredSystem, SolveScratch, SystemBuilder,
 };
 use super::factor::{Row, MAX_LANES};
-use super::rotation::consistent_angles_in_cliques;
+use super::rotation::{consistent_angles_in_cliques, Cliques};
 use super::sincos::sin_cos_many;
 use super::Repair;
 use crate::error::{Error, Result};
@@ -240,16 +240,23 @@ impl LocalTransforms {
     }
 
     /// The reduced rotation graph (module docs) as cliques: the edges incident to each vertex,
-    /// in edge order and in compressed rows (`(start, edges)`, vertex `v`'s edges
-    /// `edges[start[v]..start[v + 1]]`), every two of which are linked.
-    pub(crate) fn rotation_cliques(&self, n: usize) -> (Vec<usize>, Vec<u32>) {
-        crate::mesh::compressed_rows(
+    /// in edge order, every two of which are linked; each edge is in its two end points'
+    /// cliques.
+    pub(crate) fn rotation_cliques(&self, n: usize) -> Cliques {
+        let (start, members) = crate::mesh::compressed_rows(
             n,
             self.edges
                 .iter()
                 .enumerate()
                 .flat_map(|(k, &(i, j))| [(i, k as u32), (j, k as u32)]),
-        )
+        );
+        // Edge `k` is in the cliques of its two end points.
+        Cliques {
+            start,
+            members,
+            of_start: (0..=self.edges.len()).map(|k| 2 * k).collect(),
+            of_node: self.edges.iter().flat_map(|&(i, j)| [i, j]).collect(),
+        }
     }
 }
 

@@ -38,16 +38,23 @@ pub(crate) fn consistent_angles(angles: &[f64], links: &[(u32, u32)]) -> Vec<f64
 /// heaviest link of a cycle within the clique, so it is in no minimum spanning forest of the
 /// whole graph either (keys are distinct, so each forest is unique), and only the cliques'
 /// trees (found by Prim's algorithm, `d − 1` links for `d` nodes) go on to Kruskal.
+///
+/// Smooth deformations, where neighbours turn by less than a quarter turn relative to each
+/// other, skip the forest: [`lifted_through_cliques`] gives its angles without it.
 pub(crate) fn consistent_angles_in_cliques(
     angles: &[f64],
-    cliques: impl FnOnce() -> (Vec<usize>, Vec<u32>),
+    cliques: impl FnOnce() -> Cliques,
 ) -> Vec<f64> {
     if within_half_turn(angles) {
         // No two angles are π apart, so no child is ever shifted, whatever the tree: the
         // traversal would hand back the angles as they are.
         return angles.to_vec();
     }
-    let (start, members) = cliques();
+    let cliques = cliques();
+    if let Some(lifted) = lifted_through_cliques(angles, &cliques) {
+        return lifted;
+    }
+    let Cliques { start, members, .. } = cliques;
     let candidates: usize = start
         .windows(2)
         .map(|w| (w[1] - w[0]).saturating_sub(1))
@@ -58,6 +65,156 @@ pub(crate) fn consistent_angles_in_cliques(
         prim.tree(angles, &members[w[0]..w[1]], &mut keys);
     }
     forest_from_keys(angles, keys)
+}
+
+/// Nodes grouped in cliques, both ways round, in compressed rows: clique `c`'s nodes are
+/// `members[start[c]..start[c + 1]]`, and node `v` is in the cliques
+/// `of_node[of_start[v]..of_start[v + 1]]`.
+pub(crate) struct Cliques {
+    /// Where each clique's nodes start in `members`, and a last entry for the end.
+    pub(crate) start: Vec<usize>,
+    /// The cliques' nodes.
+    pub(crate) members: Vec<u32>,
+    /// Where each node's cliques start in `of_node`, and a last entry for the end.
+    pub(crate) of_start: Vec<usize>,
+    /// The nodes' cliques.
+    pub(crate) of_node: Vec<u32>,
+}
+
+impl Cliques {
+    /// The cliques `members[start[c]..start[c + 1]]` over `n` nodes, with each node's cliques
+    /// found by a counting sort.
+    #[cfg(test)]
+    pub(crate) fn new(n: usize, start: Vec<usize>, members: Vec<u32>) -> Cliques {
+        let (of_start, of_node) = crate::mesh::compressed_rows(
+            n,
+            start
+                .windows(2)
+                .enumerate()
+                .flat_map(|(c, w)| members[w[0]..w[1]].iter().map(move |&v| (v, c as u32))),
+        );
+        Cliques {
+            start,
+            members,
+            of_start,
+            of_node,
+        }
+    }
+
+    /// Clique `c`'s nodes.
+    fn clique(&self, c: u32) -> &[u32] {
+        &self.members[self.start[c as usize]..self.start[c as usize + 1]]
+    }
+
+    /// Node `v`'s cliques.
+    fn of(&self, v: u32) -> &[u32] {
+        &self.of_node[self.of_start[v as usize]..self.of_start[v as usize + 1]]
+    }
+
+    /// How many cliques there are.
+    fn len(&self) -> u32 {
+        self.start.len().saturating_sub(1) as u32
+    }
+}
+
+/// Angles lifted further than this from the origin are left to the spanning forest: the
+/// margin of [`lifted_through_cliques`] covers rounding well below it.
+const LIFT_LIMIT: f64 = 1e6;
+
+/// How far below π every light link's lifted difference must stay for
+/// [`lifted_through_cliques`] to hand its lifting back: far above the rounding of angles within
+/// [`LIFT_LIMIT`] (about 1e-10), so the spanning forest's traversal picks the same branch for
+/// every child.
+const LIFT_MARGIN: f64 = 1e-6;
+
+/// Links that turn by less than this are the light links of [`lifted_through_cliques`].
+const LIGHT: f64 = std::f64::consts::FRAC_PI_2;
+
+/// The angles of [`consistent_angles_in_cliques`], bit for bit, without a spanning forest, in
+/// the case §4.1.1 is designed for: neighbouring transformations that turn by less than a
+/// quarter turn relative to each other hold the shape together, and no loop of them winds
+/// around. `None` otherwise, and the forest decides.
+///
+/// Why the bits are the same. Call a link light when it turns by less than [`LIGHT`]
+/// ([`turn_between`]). When the light links join every part of the graph, every heavier link
+/// closes a loop of lighter ones and is in no minimum spanning forest, so the forest is made
+/// of light links. A walk over the light links from each part's root (the forest's: smallest
+/// `|α|`, lowest index) puts every node on the branch ([`nearest_branch`]) nearest to the node
+/// it was reached from. If then every light link's lifted ends are less than `π − LIFT_MARGIN`
+/// apart, so are the forest's. The forest's traversal starts at the same root, unchanged, and
+/// gives each child `α + 2kπ` for the one integer `k` within π of its parent: by induction the
+/// parent's value here, so the child's value here, to the bit (both compute `α + 2π·k` from
+/// the same `k`, or hand back `α` when `k` is 0).
+fn lifted_through_cliques(angles: &[f64], cliques: &Cliques) -> Option<Vec<f64>> {
+    if angles.iter().any(|a| !a.is_finite()) {
+        return None;
+    }
+    let n = angles.len();
+    // Each part's root.
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    for c in 0..cliques.len() {
+        if let Some((&first, rest)) = cliques.clique(c).split_first() {
+            for &v in rest {
+                let (ra, rb) = (find_root(&mut parent, first), find_root(&mut parent, v));
+                parent[ra.max(rb) as usize] = ra.min(rb);
+            }
+        }
+    }
+    let mut root_of = vec![u32::MAX; n];
+    for v in 0..n as u32 {
+        let r = find_root(&mut parent, v) as usize;
+        let best = root_of[r];
+        if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
+            root_of[r] = v;
+        }
+    }
+    drop(parent);
+    let light = |a: u32, b: u32| turn_between(angles[a as usize], angles[b as usize]) < LIGHT;
+    let mut out = angles.to_vec();
+    let mut lifted = vec![false; n];
+    let mut stack: Vec<u32> = Vec::new();
+    for &root in root_of.iter().filter(|&&r| r != u32::MAX) {
+        lifted[root as usize] = true;
+        stack.push(root);
+        while let Some(v) = stack.pop() {
+            let av = out[v as usize];
+            for &c in cliques.of(v) {
+                for &u in cliques.clique(c) {
+                    if !lifted[u as usize] && light(v, u) {
+                        lifted[u as usize] = true;
+                        out[u as usize] = nearest_branch(angles[u as usize], av);
+                        stack.push(u);
+                    }
+                }
+            }
+        }
+    }
+    if lifted.contains(&false) {
+        return None; // the light links leave a part in pieces
+    }
+    if out.iter().any(|a| a.abs() > LIFT_LIMIT) {
+        return None;
+    }
+    for c in 0..cliques.len() {
+        let nodes = cliques.clique(c);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &v in nodes {
+            lo = lo.min(out[v as usize]);
+            hi = hi.max(out[v as usize]);
+        }
+        if hi - lo < PI - LIFT_MARGIN {
+            continue; // no two of the clique are a half turn apart
+        }
+        for (k, &a) in nodes.iter().enumerate() {
+            let la = out[a as usize];
+            for &b in &nodes[k + 1..] {
+                if light(a, b) && (la - out[b as usize]).abs() >= PI - LIFT_MARGIN {
+                    return None;
+                }
+            }
+        }
+    }
+    Some(out)
 }
 
 /// Scratch of Prim's algorithm on one clique.
@@ -479,11 +636,61 @@ mod tests {
                 start.push(members.len());
             }
             let want = along_spanning_forest(&angles, &links);
-            let got = consistent_angles_in_cliques(&angles, || (start, members));
+            let got = consistent_angles_in_cliques(&angles, || Cliques::new(angles.len(), start, members));
             proptest::prop_assert_eq!(
                 got.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
                 want.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
             );
+        }
+
+        /// A smooth turn of many windings (each clique a window of neighbouring nodes on a
+        /// line, less than a quarter turn across) is lifted without the forest, to the bits
+        /// of the forest over every link; the nodes are shuffled so the walk's order is not
+        /// the line's.
+        #[test]
+        fn smooth_turns_are_lifted_to_the_bits_of_the_forest(
+            offset in -3.2f64..3.2,
+            rate in -0.2f64..0.2,
+            noise in proptest::collection::vec(-0.02f64..0.02, 20..200),
+            widths in proptest::collection::vec(1usize..7, 1..80),
+            shuffle in proptest::collection::vec(0usize..1000, 200),
+        ) {
+            let n = noise.len();
+            // Node `place[k]` sits at position `k` of the line.
+            let mut place: Vec<u32> = (0..n as u32).collect();
+            for k in (1..n).rev() {
+                place.swap(k, shuffle[k] % (k + 1));
+            }
+            let mut angles = vec![0.0; n];
+            for (k, &v) in place.iter().enumerate() {
+                let a = offset + rate * k as f64 + noise[k];
+                angles[v as usize] = a - TAU * (a / TAU).round();
+            }
+            // Windows that cover every consecutive pair, so the line is one part.
+            let (mut start, mut members) = (vec![0usize], Vec::new());
+            let mut k = 0;
+            for &w in widths.iter().cycle() {
+                let end = (k + w).min(n - 1);
+                members.extend_from_slice(&place[k..=end]);
+                start.push(members.len());
+                if end == n - 1 {
+                    break;
+                }
+                k = end;
+            }
+            let links: Vec<(u32, u32)> = start
+                .windows(2)
+                .flat_map(|w| {
+                    let m = &members[w[0]..w[1]];
+                    (0..m.len()).flat_map(move |a| (a + 1..m.len()).map(move |b| (m[a], m[b])))
+                })
+                .collect();
+            let cliques = Cliques::new(n, start, members);
+            let lifted = lifted_through_cliques(&angles, &cliques);
+            proptest::prop_assert!(lifted.is_some());
+            let want = along_spanning_forest(&angles, &links);
+            let bits = |v: &[f64]| v.iter().map(|a| a.to_bits()).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&lifted.unwrap_or_default()), bits(&want));
         }
 
         /// The shortcut in [`turn_between`] gives the bits of `rem_euclid` over differences
@@ -505,6 +712,32 @@ mod tests {
         assert!((fixed[1] - (1.6 - TAU)).abs() < 1e-15);
         assert!(!within_half_turn(&[0.0, f64::NAN]));
         assert!(!within_half_turn(&[0.0, f64::INFINITY]));
+    }
+
+    /// A ring of eight nodes turning a whole turn in steps of an eighth: every link is light,
+    /// but the loop winds around, so no lifting keeps every link within a half turn and the
+    /// forest decides (it cuts the ring at its heaviest link).
+    #[test]
+    fn a_winding_loop_is_left_to_the_forest() {
+        let angles: Vec<f64> = (0..8)
+            .map(|k| {
+                let a = 0.1 + k as f64 * TAU / 8.0;
+                a - TAU * (a / TAU).round()
+            })
+            .collect();
+        let start: Vec<usize> = (0..=8).map(|k| 2 * k).collect();
+        let members: Vec<u32> = (0..8u32).flat_map(|k| [k, (k + 1) % 8]).collect();
+        let links: Vec<(u32, u32)> = members.chunks(2).map(|p| (p[0], p[1])).collect();
+        let cliques = Cliques::new(8, start.clone(), members.clone());
+        assert!(lifted_through_cliques(&angles, &cliques).is_none());
+        let got = consistent_angles_in_cliques(&angles, || Cliques::new(8, start, members));
+        assert_eq!(got, along_spanning_forest(&angles, &links));
+        // One branch cut: the other seven links turn by an eighth.
+        let steps = links
+            .iter()
+            .filter(|&&(a, b)| ((got[a as usize] - got[b as usize]).abs() - TAU / 8.0).abs() < 1e-9)
+            .count();
+        assert_eq!(steps, 7);
     }
 
     #[test]

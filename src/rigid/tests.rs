@@ -383,7 +383,8 @@ fn reduced_rotation_graph_matches_the_full_graph() {
     for (src, tris, tgt) in cases {
         let rings = crate::mesh::one_rings(&tris, src.len());
         let local = disc::LocalTransforms::new(&src, &tgt, &rings).unwrap();
-        let (start, members) = local.rotation_cliques(src.len());
+        let cliques = local.rotation_cliques(src.len());
+        let (start, members) = (&cliques.start, &cliques.members);
         let clique_links: Vec<(u32, u32)> = start
             .windows(2)
             .flat_map(|w| {
@@ -393,7 +394,7 @@ fn reduced_rotation_graph_matches_the_full_graph() {
             .collect();
         let reduced = consistent_angles(&local.alpha, &clique_links);
         let by_cliques =
-            consistent_angles_in_cliques(&local.alpha, || (start.clone(), members.clone()));
+            consistent_angles_in_cliques(&local.alpha, || local.rotation_cliques(src.len()));
         assert_eq!(
             reduced.iter().map(|a| a.to_bits()).collect::<Vec<_>>(),
             by_cliques.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
