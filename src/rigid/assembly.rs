@@ -54,6 +54,12 @@ impl SystemBuilder {
         }
     }
 
+    /// Makes room for `edges` more [`SystemBuilder::add_edge`] terms at once, instead of
+    /// growing the entry list step by step.
+    pub(crate) fn reserve_edges(&mut self, edges: usize) {
+        self.entries.reserve(3 * edges);
+    }
+
     fn find(&mut self, mut v: u32) -> u32 {
         while self.parent[v as usize] != v {
             let gp = self.parent[self.parent[v as usize] as usize];

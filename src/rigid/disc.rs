@@ -167,13 +167,15 @@ impl LocalTransforms {
             MIN_EDGE_FRACTION * diagonal(source),
             MIN_EDGE_FRACTION * diagonal(target),
         );
+        // One-rings list every edge twice, so half the pairs is the usual count.
+        let edges = undirected.len() / 2 + 1;
         let mut t = LocalTransforms {
             directed: Vec::new(),
-            edges: Vec::new(),
-            weight: Vec::new(),
-            d: Vec::new(),
-            alpha: Vec::new(),
-            scale: Vec::new(),
+            edges: Vec::with_capacity(edges),
+            weight: Vec::with_capacity(edges),
+            d: Vec::with_capacity(edges),
+            alpha: Vec::with_capacity(edges),
+            scale: Vec::with_capacity(edges),
         };
         for &(i, j) in &undirected {
             if t.edges.last() == Some(&(i, j)) {
@@ -425,6 +427,7 @@ impl DiscRigid {
         let n = source.len();
         let alpha = consistent_angles_in_cliques(&local.alpha, || local.rotation_cliques(n));
         let mut builder = SystemBuilder::new(n);
+        builder.reserve_edges(local.edges.len());
         for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
             builder.add_edge(i, j, w);
         }
