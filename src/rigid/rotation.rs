@@ -160,14 +160,7 @@ fn lifted_through_cliques(angles: &[f64], cliques: &Cliques) -> Option<Vec<f64>>
             }
         }
     }
-    let mut root_of = vec![u32::MAX; n];
-    for v in 0..n as u32 {
-        let r = find_root(&mut parent, v) as usize;
-        let best = root_of[r];
-        if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
-            root_of[r] = v;
-        }
-    }
+    let root_of = roots(angles, &mut parent);
     drop(parent);
     let light = |a: u32, b: u32| turn_between(angles[a as usize], angles[b as usize]) < LIGHT;
     let mut out = angles.to_vec();
@@ -282,15 +275,7 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
     // Tree adjacency in compressed rows.
     let (start, adj) =
         crate::mesh::compressed_rows(n, tree.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
-    // Root of each tree: smallest |α|, lowest index on ties.
-    let mut root_of = vec![u32::MAX; n];
-    for v in 0..n as u32 {
-        let r = find_root(&mut parent, v) as usize;
-        let best = root_of[r];
-        if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
-            root_of[r] = v;
-        }
-    }
+    let root_of = roots(angles, &mut parent);
     let mut out = angles.to_vec();
     let mut visited = vec![false; n];
     let mut stack: Vec<u32> = Vec::new();
@@ -309,6 +294,21 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
         }
     }
     out
+}
+
+/// The root of each part of the union-find forest `parent`, where the traversal starts: its
+/// node of smallest `|α|`, the lowest index on ties; indexed by the part's union-find root,
+/// `u32::MAX` elsewhere.
+fn roots(angles: &[f64], parent: &mut [u32]) -> Vec<u32> {
+    let mut root_of = vec![u32::MAX; angles.len()];
+    for v in 0..angles.len() as u32 {
+        let r = find_root(parent, v) as usize;
+        let best = root_of[r];
+        if best == u32::MAX || angles[v as usize].abs() < angles[best as usize].abs() {
+            root_of[r] = v;
+        }
+    }
+    root_of
 }
 
 /// Whether all of `angles` lie within an interval shorter than π: then every difference
