@@ -163,25 +163,18 @@ fn lifted_through_cliques(angles: &[f64], cliques: &Cliques) -> Option<Vec<f64>>
     let root_of = roots(angles, &mut parent);
     drop(parent);
     let light = |a: u32, b: u32| turn_between(angles[a as usize], angles[b as usize]) < LIGHT;
-    let mut out = angles.to_vec();
-    let mut lifted = vec![false; n];
-    let mut stack: Vec<u32> = Vec::new();
-    for &root in root_of.iter().filter(|&&r| r != u32::MAX) {
-        lifted[root as usize] = true;
-        stack.push(root);
-        while let Some(v) = stack.pop() {
-            let av = out[v as usize];
-            for &c in cliques.of(v) {
-                for &u in cliques.clique(c) {
-                    if !lifted[u as usize] && light(v, u) {
-                        lifted[u as usize] = true;
-                        out[u as usize] = nearest_branch(angles[u as usize], av);
-                        stack.push(u);
-                    }
-                }
-            }
-        }
-    }
+    let (out, lifted) = lift_from_roots(
+        angles,
+        &root_of,
+        |v| {
+            cliques
+                .of(v)
+                .iter()
+                .flat_map(|&c| cliques.clique(c))
+                .copied()
+        },
+        light,
+    );
     if lifted.contains(&false) {
         return None; // the light links leave a part in pieces
     }
@@ -276,24 +269,47 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
     let (start, adj) =
         crate::mesh::compressed_rows(n, tree.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
     let root_of = roots(angles, &mut parent);
+    lift_from_roots(
+        angles,
+        &root_of,
+        |v| {
+            adj[start[v as usize]..start[v as usize + 1]]
+                .iter()
+                .copied()
+        },
+        |_, _| true,
+    )
+    .0
+}
+
+/// A depth-first traversal from each root of `root_of` ([`roots`]) over the links that
+/// `neighbours` lists and `follow` takes, putting each node reached on the branch
+/// ([`nearest_branch`]) nearest to the node it was reached from. Returns the angles and which
+/// nodes were reached.
+fn lift_from_roots<I: Iterator<Item = u32>>(
+    angles: &[f64],
+    root_of: &[u32],
+    neighbours: impl Fn(u32) -> I,
+    follow: impl Fn(u32, u32) -> bool,
+) -> (Vec<f64>, Vec<bool>) {
     let mut out = angles.to_vec();
-    let mut visited = vec![false; n];
+    let mut reached = vec![false; angles.len()];
     let mut stack: Vec<u32> = Vec::new();
     for &root in root_of.iter().filter(|&&r| r != u32::MAX) {
-        visited[root as usize] = true;
+        reached[root as usize] = true;
         stack.push(root);
         while let Some(v) = stack.pop() {
             let av = out[v as usize];
-            for &c in &adj[start[v as usize]..start[v as usize + 1]] {
-                if !visited[c as usize] {
-                    visited[c as usize] = true;
-                    out[c as usize] = nearest_branch(out[c as usize], av);
-                    stack.push(c);
+            for u in neighbours(v) {
+                if !reached[u as usize] && follow(v, u) {
+                    reached[u as usize] = true;
+                    out[u as usize] = nearest_branch(angles[u as usize], av);
+                    stack.push(u);
                 }
             }
         }
     }
-    out
+    (out, reached)
 }
 
 /// The root of each part of the union-find forest `parent`, where the traversal starts: its
@@ -434,6 +450,18 @@ pub(crate) fn nearest_branch(alpha: f64, reference: f64) -> f64 {
 /// A list of index pairs.
 #[cfg(test)]
 pub(crate) type EdgeList = Vec<(u32, u32)>;
+
+/// Every link of the cliques `members[start[c]..start[c + 1]]`: each two nodes of a clique.
+#[cfg(test)]
+pub(crate) fn clique_links(start: &[usize], members: &[u32]) -> EdgeList {
+    start
+        .windows(2)
+        .flat_map(|w| {
+            let m = &members[w[0]..w[1]];
+            (0..m.len()).flat_map(move |a| (a + 1..m.len()).map(move |b| (m[a], m[b])))
+        })
+        .collect()
+}
 
 /// The paper's literal graph (§4.1.1) for discs `discs`: one node per directed local
 /// transformation `(i, j)` with `j ∈ P_i`, numbered in the order of `discs`, and a link between
@@ -678,13 +706,7 @@ mod tests {
                 }
                 k = end;
             }
-            let links: Vec<(u32, u32)> = start
-                .windows(2)
-                .flat_map(|w| {
-                    let m = &members[w[0]..w[1]];
-                    (0..m.len()).flat_map(move |a| (a + 1..m.len()).map(move |b| (m[a], m[b])))
-                })
-                .collect();
+            let links = clique_links(&start, &members);
             let cliques = Cliques::new(n, start, members);
             let lifted = lifted_through_cliques(&angles, &cliques);
             proptest::prop_assert!(lifted.is_some());

@@ -1,6 +1,8 @@
 //! Tests of the interpolation methods on synthetic meshes built here.
 
-use super::rotation::{consistent_angles, consistent_angles_in_cliques, full_disc_graph};
+use super::rotation::{
+    clique_links, consistent_angles, consistent_angles_in_cliques, full_disc_graph,
+};
 use super::*;
 use crate::geometry::bounding_box;
 use crate::quality;
@@ -384,14 +386,7 @@ fn reduced_rotation_graph_matches_the_full_graph() {
         let rings = crate::mesh::one_rings(&tris, src.len());
         let local = disc::LocalTransforms::new(&src, &tgt, &rings).unwrap();
         let cliques = local.rotation_cliques(src.len());
-        let (start, members) = (&cliques.start, &cliques.members);
-        let clique_links: Vec<(u32, u32)> = start
-            .windows(2)
-            .flat_map(|w| {
-                let m = &members[w[0]..w[1]];
-                (0..m.len()).flat_map(move |a| (a + 1..m.len()).map(move |b| (m[a], m[b])))
-            })
-            .collect();
+        let clique_links = clique_links(&cliques.start, &cliques.members);
         let reduced = consistent_angles(&local.alpha, &clique_links);
         let by_cliques =
             consistent_angles_in_cliques(&local.alpha, || local.rotation_cliques(src.len()));
