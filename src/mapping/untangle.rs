@@ -141,26 +141,52 @@ impl Untangler {
     pub(crate) fn improve(&self, triangles: &[[u32; 3]], rest: &[Point], points: &mut [Point]) {
         let rest_quality: Vec<f64> = triangles.iter().map(|t| quality(t, rest)).collect();
         let incident = &self.incident;
+        let relative = |f: u32, pts: &[Point]| {
+            let f = f as usize;
+            quality(&triangles[f], pts) / rest_quality[f].max(f64::MIN_POSITIVE)
+        };
         let star_min = |v: usize, pts: &[Point]| -> f64 {
             incident[v]
                 .iter()
-                .map(|&f| {
-                    let f = f as usize;
-                    quality(&triangles[f], pts) / rest_quality[f].max(f64::MIN_POSITIVE)
-                })
+                .map(|&f| relative(f, pts))
                 .fold(f64::INFINITY, f64::min)
+        };
+        // `star_min` when it is above `bound`, else `None`: a move is only taken when it
+        // raises the smallest relative quality, so the first triangle at or below the best so
+        // far settles it (the same minimum, in the same order, when it is above).
+        let star_min_above = |v: usize, pts: &[Point], bound: f64| -> Option<f64> {
+            let mut q = f64::INFINITY;
+            for &f in &incident[v] {
+                let r = relative(f, pts);
+                if r <= bound {
+                    return None;
+                }
+                q = q.min(r);
+            }
+            (q > bound).then_some(q)
         };
         // Whether a vertex moved in the last sweep: a vertex none of whose star moved has
         // nothing new to gain.
         let mut changed = vec![true; self.fixed.len()];
         let mut now_changed = vec![false; self.fixed.len()];
         let mut scratch = Vec::new();
-        for _ in 0..IMPROVE_SWEEPS {
-            let mut active: Vec<u32> = Vec::new();
-            for (f, t) in triangles.iter().enumerate() {
-                if quality(t, points) < DISTORTED * rest_quality[f] {
-                    active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
+        // Which triangles are distorted: only a moved vertex's triangles can change.
+        let is_distorted =
+            |f: usize, pts: &[Point]| quality(&triangles[f], pts) < DISTORTED * rest_quality[f];
+        let mut distorted: Vec<bool> = (0..triangles.len())
+            .map(|f| is_distorted(f, points))
+            .collect();
+        for sweep in 0..IMPROVE_SWEEPS {
+            if sweep > 0 {
+                for (v, _) in changed.iter().enumerate().filter(|(_, &c)| c) {
+                    for &f in &incident[v] {
+                        distorted[f as usize] = is_distorted(f as usize, points);
+                    }
                 }
+            }
+            let mut active: Vec<u32> = Vec::new();
+            for (t, _) in triangles.iter().zip(&distorted).filter(|(_, &d)| d) {
+                active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
             }
             active.sort_unstable();
             active.dedup();
@@ -199,8 +225,7 @@ impl Untangler {
                 for goal in [centroid, shaped].into_iter().chain(lp) {
                     for alpha in [1.0, 0.5, 0.25] {
                         points[v] = here + (goal - here) * alpha;
-                        let q = star_min(v, points);
-                        if q > best.0 {
+                        if let Some(q) = star_min_above(v, points, best.0) {
                             best = (q, points[v]);
                         }
                     }
