@@ -288,8 +288,8 @@ fn walk(
             if valid(&next) {
                 (true, true)
             } else {
-                let untangled =
-                    solver.untangler.untangle(&tri.triangles, &mut next, is_bad) && valid(&next);
+                // `untangle` returns true only when no triangle is bad: `valid` would hold.
+                let untangled = solver.untangler.untangle(&tri.triangles, &mut next, is_bad);
                 (untangled, false)
             }
         };
