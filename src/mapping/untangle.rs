@@ -259,9 +259,9 @@ impl Untangler {
         points: &[Point],
         scratch: &mut Scratch,
     ) -> Option<(Point, f64)> {
-        let Scratch { cons, turns, among } = scratch;
+        let Scratch { cons, among } = scratch;
         let (o, eps) = self.program(v, points, cons)?;
-        let best = match peak(cons, turns, among, eps) {
+        let best = match peak(cons, among, eps) {
             Peak::Found(p, z) => Some((p, z)),
             Peak::Among => enumerate(cons, among, eps),
             Peak::Unknown => {
@@ -307,8 +307,6 @@ impl Untangler {
 struct Scratch {
     /// The constraints of the star.
     cons: Vec<Constraint>,
-    /// `gₐ × g_b` of every pair of constraints `a < b` (row-major, `k × k`).
-    turns: Vec<f64>,
     /// The constraints whose vertices can be the answer ([`peak`], [`enumerate`]).
     among: Vec<usize>,
 }
@@ -337,15 +335,19 @@ fn position(r0: &Constraint, r1: &Constraint, r2: &Constraint, pair: &Pair, det:
     )
 }
 
-/// The highest feasible vertex of the program, found among the vertices where the three
-/// tight constraints' gradients surround the origin (`0` in the closed triangle of `gᵢ`,
-/// `gⱼ`, `gₗ`): only there is `min(cᵢ + gᵢ·x, …)` of the three bounded above, by its vertex's
-/// height, so each such height bounds the program's optimum from above, and the optimum's own
-/// vertex is among them (its tight constraints' gradients surround the origin, or it would
-/// not be a maximum). The lowest of them, `p`, bounds where the enumeration's answer can be:
-/// it is [`Peak::Found`] when it is provably that answer, bit for bit; else the constraints the
+/// The optimum of the program, found among the vertices where the three tight constraints'
+/// gradients surround the origin (`0` in the closed triangle of `gᵢ`, `gⱼ`, `gₗ`): only there
+/// is `min(cᵢ + gᵢ·x, …)` of the three bounded above, by its vertex's height, so each such
+/// height bounds the optimum from above, and one such vertex is the optimum (its tight
+/// constraints' gradients surround the origin, or it would not be a maximum). The search is
+/// the dual simplex method: from the first surrounding vertex, the most violated constraint
+/// replaces the one of the three whose place keeps the origin surrounded, until the vertex is
+/// feasible (a few pivots; it gives up after `2k + 8`).
+///
+/// The feasible vertex `p` found bounds where the enumeration's answer can be: it is
+/// [`Peak::Found`] when it is provably that answer, bit for bit; else the constraints the
 /// answer must be made of are listed in `among` ([`Peak::Among`], for [`enumerate`]), or
-/// nothing is known ([`Peak::Unknown`]: no surrounding vertex, or `p` is not feasible).
+/// nothing is known ([`Peak::Unknown`]: no surrounding vertex, or no feasible one found).
 ///
 /// The bound: the three tight constraints fall away from `p` at a rate of at least `α`, the
 /// distance from the origin to the edges of their gradients' triangle, so a point within `eps`
@@ -354,50 +356,65 @@ fn position(r0: &Constraint, r1: &Constraint, r2: &Constraint, pair: &Pair, det:
 /// answer is feasible and at least as high as `p` (which is feasible), so its constraints are
 /// among those that close to tight at `p` (twice that, for rounding); where no fourth one is,
 /// the answer is `p` itself. Ties, repeated points and flat tops leave a few more.
-fn peak(cons: &[Constraint], turns: &mut Vec<f64>, among: &mut Vec<usize>, eps: f64) -> Peak {
+fn peak(cons: &[Constraint], among: &mut Vec<usize>, eps: f64) -> Peak {
     let k = cons.len();
-    turns.clear();
-    turns.resize(k * k, 0.0);
-    for a in 0..k {
-        for b in a + 1..k {
-            turns[a * k + b] = cons[a].g.perp_dot(cons[b].g);
-        }
-    }
-    // The lowest surrounding vertex: its height, determinant and constraints.
-    let mut low: Option<(f64, f64, [usize; 3])> = None;
-    for j in 1..k {
-        for l in j + 1..k {
-            let tjl = turns[j * k + l];
-            let mut pair = None;
-            for i in 0..j {
-                // gᵢ × gⱼ, gⱼ × gₗ and gₗ × gᵢ of one sign: the origin is in the triangle.
-                let (tij, tli) = (turns[i * k + j], -turns[i * k + l]);
-                let around = (tij >= 0.0 && tjl >= 0.0 && tli >= 0.0)
-                    || (tij <= 0.0 && tjl <= 0.0 && tli <= 0.0);
-                if !around {
-                    continue;
-                }
-                let pair = pair.get_or_insert_with(|| Pair::new(&cons[j], &cons[l]));
-                let Some((z, det)) = height(&cons[i], pair) else {
-                    continue;
-                };
-                let order = [i, j, l];
-                if low.is_none_or(|(lz, _, lo)| z < lz || (z == lz && order < lo)) {
-                    low = Some((z, det, order));
-                }
-            }
-        }
-    }
-    let Some((z, det, [i, j, l])) = low else {
+    let turn = |a: usize, b: usize| cons[a].g.perp_dot(cons[b].g);
+    // gᵢ × gⱼ, gⱼ × gₗ and gₗ × gᵢ of one sign (or zero): the origin is in the triangle.
+    let surrounds = |[i, j, l]: [usize; 3]| {
+        let (x, y, z) = (turn(i, j), turn(j, l), turn(l, i));
+        (x >= 0.0 && y >= 0.0 && z >= 0.0) || (x <= 0.0 && y <= 0.0 && z <= 0.0)
+    };
+    let first = (0..k).find_map(|i| {
+        (i + 1..k).find_map(|j| (j + 1..k).map(|l| [i, j, l]).find(|&t| surrounds(t)))
+    });
+    let Some(mut tri) = first else {
         return Peak::Unknown;
     };
-    let pair = Pair::new(&cons[j], &cons[l]);
-    let p = position(&cons[i], &cons[j], &cons[l], &pair, det);
+    // The vertex of the three (in ascending order, as the enumeration solves it).
+    let mut found = None;
+    for _ in 0..2 * k + 8 {
+        tri.sort_unstable();
+        let [i, j, l] = tri;
+        let pair = Pair::new(&cons[j], &cons[l]);
+        let Some((z, det)) = height(&cons[i], &pair) else {
+            return Peak::Unknown;
+        };
+        let p = position(&cons[i], &cons[j], &cons[l], &pair, det);
+        let holds = |q: &Constraint| z <= q.c + q.g.dot(p) + eps;
+        if cons.iter().all(holds) {
+            found = Some((p, z));
+            break;
+        }
+        // The most violated constraint comes in.
+        let Some(m) = (0..k).filter(|&m| !holds(&cons[m])).min_by(|&a, &b| {
+            let slack = |m: usize| cons[m].c + cons[m].g.dot(p) - z;
+            slack(a).total_cmp(&slack(b))
+        }) else {
+            return Peak::Unknown;
+        };
+        // A tight constraint cannot be violated but by rounding: no way on.
+        if tri.contains(&m) {
+            return Peak::Unknown;
+        }
+        let swapped = (0..3).map(|r| {
+            let mut t = tri;
+            t[r] = m;
+            t
+        });
+        match swapped.into_iter().find(|&t| surrounds(t)) {
+            Some(t) => tri = t,
+            None => return Peak::Unknown,
+        }
+    }
+    let Some((p, z)) = found else {
+        return Peak::Unknown;
+    };
+    let [i, j, l] = tri;
     // α: the distance from the origin to the nearest edge of the gradients' triangle; G / α
     // from squares, with one square root (it only sets a margin).
     let mut alpha2 = f64::INFINITY;
     for (a, b) in [(i, j), (j, l), (i, l)] {
-        let t = turns[a * k + b];
+        let t = turn(a, b);
         alpha2 = alpha2.min(t * t / (cons[a].g - cons[b].g).length_squared());
     }
     let steepest2 = cons
@@ -410,12 +427,7 @@ fn peak(cons: &[Constraint], turns: &mut Vec<f64>, among: &mut Vec<usize>, eps: 
     }
     let near = 2.0 * eps * (1.0 + ratio);
     among.clear();
-    let holds = |q: &Constraint| z <= q.c + q.g.dot(p) + eps;
     for (m, q) in cons.iter().enumerate() {
-        // Infeasible (the enumeration's own test): no bound on where the answer is.
-        if !holds(q) {
-            return Peak::Unknown;
-        }
         if m == i || m == j || m == l || q.c + q.g.dot(p) - z <= near {
             among.push(m);
         }
@@ -700,11 +712,10 @@ mod tests {
                 };
                 assert_eq!(bits(got), bits(want), "{pts:?}");
                 if jittered && want.is_some() {
-                    let Scratch { cons, turns, among } = &mut scratch;
+                    let Scratch { cons, among } = &mut scratch;
                     let (_, eps) = u.program(0, &pts, cons).unwrap();
                     cases += 1;
-                    by_peak +=
-                        usize::from(matches!(peak(cons, turns, among, eps), Peak::Found(..)));
+                    by_peak += usize::from(matches!(peak(cons, among, eps), Peak::Found(..)));
                 }
             }
         }
