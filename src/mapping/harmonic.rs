@@ -17,10 +17,14 @@
 
 use crate::geometry::Point;
 use crate::{Error, Result};
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, simplicial, supernodal, LltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw,
+};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{Mat, Side};
+use faer::{Conj, Mat, Side};
+use std::sync::Arc;
 
 const NONE: u32 = u32::MAX;
 
@@ -41,8 +45,7 @@ pub struct Harmonic {
     off_slot: Vec<u32>,
     /// Per free vertex, the slot of its diagonal entry.
     diag_slot: Vec<u32>,
-    pattern: SymbolicSparseColMat<usize>,
-    symbolic: Option<SymbolicLlt<usize>>,
+    symbolic: Option<Arc<Symbolic>>,
     values: Vec<f64>,
     weights: Vec<f64>,
     rhs: Mat<f64>,
@@ -56,7 +59,130 @@ pub struct Harmonic {
 struct Factored {
     metric: Vec<Point>,
     weights: Vec<f64>,
-    llt: Llt<usize, f64>,
+    /// The values of `L` ([`Symbolic::cholesky`]'s layout).
+    llt: Vec<f64>,
+}
+
+/// The symbolic factorization of `L_ff` (faer's AMD ordering and choice of simplicial or
+/// supernodal, as `SymbolicLlt` makes them) and the matrix laid out in its ordering, so that a
+/// numeric factorization reads the assembled values in place: faer's own numeric factorization
+/// permutes the whole matrix first, every time (issue 16: a quarter of the composite walk's
+/// factorization time). The layout is faer's own permutation of the pattern, computed once, so
+/// the factor is the same bit for bit.
+#[derive(Debug)]
+struct Symbolic {
+    cholesky: SymbolicCholesky<usize>,
+    /// The permuted matrix's pattern, on the side the numeric factorization reads.
+    permuted: SymbolicSparseColMat<usize>,
+    /// Per slot of [`Harmonic::values`], its place among the permuted matrix's values.
+    place: Vec<usize>,
+}
+
+impl Symbolic {
+    /// Analyses the upper-triangle `pattern` and lays it out in the factor's ordering.
+    fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<Self> {
+        let fail = |e: &dyn std::fmt::Debug| {
+            Error::internal(format!("harmonic map: symbolic factorization: {e:?}"))
+        };
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Upper,
+            Default::default(),
+            Default::default(),
+        )
+        .map_err(|e| fail(&e))?;
+        let n = pattern.nrows();
+        let nnz = pattern.row_idx().len();
+        // Each slot's number as its value, permuted as faer permutes the values: where each
+        // slot lands.
+        let ids: Vec<f64> = (0..nnz).map(|k| k as f64).collect();
+        let out_side = match cholesky.raw() {
+            SymbolicCholeskyRaw::Simplicial(_) => Side::Upper,
+            SymbolicCholeskyRaw::Supernodal(_) => Side::Lower,
+        };
+        let (mut val, mut col_ptr, mut row_idx) =
+            (vec![0.0; nnz], vec![0usize; n + 1], vec![0usize; nnz]);
+        let identity: Vec<usize> = (0..n).collect();
+        let perm = match cholesky.perm() {
+            Some(p) => p,
+            None => faer::perm::PermRef::new_checked(&identity, &identity, n),
+        };
+        let mut mem = MemBuffer::try_new(StackReq::new::<usize>(n)).map_err(|e| fail(&e))?;
+        faer::sparse::utils::permute_self_adjoint_to_unsorted(
+            &mut val,
+            &mut col_ptr,
+            &mut row_idx,
+            SparseColMatRef::new(pattern.as_ref(), &ids),
+            perm,
+            Side::Upper,
+            out_side,
+            MemStack::new(&mut mem),
+        );
+        let mut place = vec![0usize; nnz];
+        for (at, &id) in val.iter().enumerate() {
+            place[id as usize] = at;
+        }
+        let permuted = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
+        Ok(Symbolic {
+            cholesky,
+            permuted,
+            place,
+        })
+    }
+
+    /// The numeric factor of the matrix with `values` in the pattern's slots (upper triangle),
+    /// or `None` if it is not numerically positive definite.
+    fn factor(&self, values: &[f64]) -> Option<Vec<f64>> {
+        let mut permuted = vec![0.0; values.len()];
+        for (&v, &at) in values.iter().zip(&self.place) {
+            permuted[at] = v;
+        }
+        let a = SparseColMatRef::new(self.permuted.as_ref(), &permuted);
+        let cholesky = &self.cholesky;
+        let mut l = vec![0.0; cholesky.len_val()];
+        let par = faer::get_global_parallelism();
+        let scratch = cholesky.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        let mut mem = MemBuffer::try_new(scratch).ok()?;
+        let stack = MemStack::new(&mut mem);
+        let factored = match cholesky.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => simplicial::factorize_simplicial_numeric_llt(
+                &mut l,
+                a,
+                Default::default(),
+                s,
+                stack,
+            )
+            .map(|_| ()),
+            SymbolicCholeskyRaw::Supernodal(s) => supernodal::factorize_supernodal_numeric_llt(
+                &mut l,
+                a,
+                Default::default(),
+                s,
+                par,
+                stack,
+                Default::default(),
+            )
+            .map(|_| ()),
+        };
+        factored.ok().map(|()| l)
+    }
+
+    /// Solves with the factor `l` (from [`Symbolic::factor`]) in place of `rhs`.
+    fn solve(&self, l: &[f64], rhs: faer::MatMut<'_, f64>) -> Result<()> {
+        let par = faer::get_global_parallelism();
+        let scratch = self
+            .cholesky
+            .solve_in_place_scratch::<f64>(rhs.ncols(), par);
+        let mut mem = MemBuffer::try_new(scratch)
+            .map_err(|e| Error::internal(format!("harmonic map: solver scratch: {e:?}")))?;
+        LltRef::<'_, usize, f64>::new(&self.cholesky, l).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            par,
+            MemStack::new(&mut mem),
+        );
+        Ok(())
+    }
 }
 
 /// Whether two metrics are the same, bit for bit (so their weights and factor are too).
@@ -131,11 +257,7 @@ impl Harmonic {
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(nf, nf, col_ptr, None, row_idx);
         let symbolic = if nf > 0 {
-            Some(
-                SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).map_err(|e| {
-                    Error::internal(format!("harmonic map: symbolic factorization: {e:?}"))
-                })?,
-            )
+            Some(Arc::new(Symbolic::new(&pattern)?))
         } else {
             None
         };
@@ -148,7 +270,6 @@ impl Harmonic {
             free_vertices,
             off_slot,
             diag_slot,
-            pattern,
             symbolic,
             values: vec![0.0; nnz],
             rhs: Mat::zeros(nf, 2),
@@ -158,7 +279,7 @@ impl Harmonic {
 
     /// Checks the vertex counts and computes the cotangent weights of `metric`; the symbolic
     /// factorization to solve with, or `None` when no vertex is free (nothing to solve).
-    fn weigh(&mut self, metric: &[Point], out: &[Point]) -> Result<Option<SymbolicLlt<usize>>> {
+    fn weigh(&mut self, metric: &[Point], out: &[Point]) -> Result<Option<Arc<Symbolic>>> {
         let n = self.free_index.len();
         if metric.len() != n || out.len() != n {
             return Err(Error::internal("harmonic map: wrong vertex count"));
@@ -258,11 +379,7 @@ impl Harmonic {
 
     /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored
     /// back so that the right-hand side uses the same weights) and factors it numerically.
-    fn factor(
-        &mut self,
-        symbolic: &SymbolicLlt<usize>,
-        floor: Option<f64>,
-    ) -> Option<Llt<usize, f64>> {
+    fn factor(&mut self, symbolic: &Symbolic, floor: Option<f64>) -> Option<Vec<f64>> {
         self.values.fill(0.0);
         for (e, &(a, b)) in self.edges.iter().enumerate() {
             let w = match floor {
@@ -283,12 +400,14 @@ impl Harmonic {
                 self.weights[e] = w;
             }
         }
-        let mat = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        Llt::try_new_with_symbolic(symbolic.clone(), mat, Side::Upper).ok()
+        symbolic.factor(&self.values)
     }
 
     /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
-    fn finish(&mut self, llt: &Llt<usize, f64>, out: &mut [Point]) -> Result<()> {
+    fn finish(&mut self, llt: &[f64], out: &mut [Point]) -> Result<()> {
+        let Some(symbolic) = self.symbolic.clone() else {
+            return Ok(());
+        };
         let nf = self.free_vertices.len();
         self.rhs.fill(0.0);
         for (e, &(a, b)) in self.edges.iter().enumerate() {
@@ -304,7 +423,7 @@ impl Harmonic {
                 self.rhs[(fb as usize, 1)] += w * q.y;
             }
         }
-        llt.solve_in_place(self.rhs.as_mut());
+        symbolic.solve(llt, self.rhs.as_mut())?;
         for f in 0..nf {
             let p = Point::new(self.rhs[(f, 0)], self.rhs[(f, 1)]);
             if !p.is_finite() {
@@ -321,6 +440,79 @@ mod tests {
     use super::*;
     use crate::triangulation::tests::{circle, pair, subdivided};
     use crate::triangulation::triangulate;
+
+    /// The factor laid out in advance solves bit for bit as faer's own `Llt` does, on grid
+    /// Laplacians (shifted, so positive definite) small enough for faer's simplicial factor
+    /// and large enough for its supernodal one.
+    #[test]
+    fn the_laid_out_factor_solves_as_faers_own() {
+        use faer::linalg::solvers::Solve;
+        use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+        let mut kinds = (false, false);
+        // Grids, and a dense block (supernodal at any size worth the name).
+        for (side, dense) in [(5usize, false), (30, false), (120, false), (13, true)] {
+            let n = side * side;
+            let id = |i: usize, j: usize| j * side + i;
+            // Column c holds rows r ≤ c: the diagonal and the grid neighbours before it (all
+            // rows before it, when dense).
+            let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+            for j in 0..side {
+                for i in 0..side {
+                    let c = id(i, j);
+                    if dense {
+                        cols[c]
+                            .extend((0..c).map(|r| (r, -1.0 / n as f64 - 1e-3 * (r % 3) as f64)));
+                    } else {
+                        if j > 0 {
+                            cols[c].push((id(i, j - 1), -1.0 - 0.01 * (c % 7) as f64));
+                        }
+                        if i > 0 {
+                            cols[c].push((id(i - 1, j), -1.0));
+                        }
+                    }
+                    cols[c].push((c, 4.5 + 0.03 * (c % 5) as f64));
+                }
+            }
+            let mut col_ptr = vec![0usize];
+            let (mut rows, mut values) = (Vec::new(), Vec::new());
+            for c in &cols {
+                for &(r, v) in c {
+                    rows.push(r);
+                    values.push(v);
+                }
+                col_ptr.push(rows.len());
+            }
+            let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+            let rhs = Mat::from_fn(n, 2, |i, k| ((i * 31 + k * 17) % 13) as f64 - 6.0);
+            let ours = Symbolic::new(&pattern).unwrap();
+            match ours.cholesky.raw() {
+                SymbolicCholeskyRaw::Simplicial(_) => kinds.0 = true,
+                SymbolicCholeskyRaw::Supernodal(_) => kinds.1 = true,
+            }
+            let l = ours.factor(&values).unwrap();
+            let mut got = rhs.clone();
+            ours.solve(&l, got.as_mut()).unwrap();
+            let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).unwrap();
+            let mat = SparseColMatRef::new(pattern.as_ref(), &values);
+            let llt = Llt::try_new_with_symbolic(symbolic, mat, Side::Upper).unwrap();
+            let mut want = rhs.clone();
+            llt.solve_in_place(want.as_mut());
+            for i in 0..n {
+                for k in 0..2 {
+                    assert_eq!(
+                        got[(i, k)].to_bits(),
+                        want[(i, k)].to_bits(),
+                        "{side}²: row {i}"
+                    );
+                }
+            }
+        }
+        assert_eq!(
+            kinds,
+            (true, true),
+            "both of faer's factor kinds are tested"
+        );
+    }
 
     /// The source triangulation of `pairs` and its curve vertices (the fixed ones).
     fn meshed(
