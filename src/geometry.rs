@@ -144,7 +144,17 @@ pub fn bounding_box(points: impl IntoIterator<Item = Point>) -> Option<(Point, P
 }
 
 /// Whether closed segments `ab` and `cd` intersect (touching counts), by exact predicates.
+/// Segments whose boxes are apart cannot meet and are answered without the predicates: the
+/// composite walk's crossing test offers many such pairs at every step (issue 16: 2.3 % fewer
+/// instructions over the slowest corpus pairs).
 pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
+    if a.x.max(b.x) < c.x.min(d.x)
+        || c.x.max(d.x) < a.x.min(b.x)
+        || a.y.max(b.y) < c.y.min(d.y)
+        || c.y.max(d.y) < a.y.min(b.y)
+    {
+        return false;
+    }
     let d1 = orient2d(c, d, a);
     let d2 = orient2d(c, d, b);
     let d3 = orient2d(a, b, c);
@@ -328,6 +338,38 @@ mod tests {
             p(2., 0.),
             p(3., 0.)
         ));
+    }
+
+    proptest::proptest! {
+        /// The box test only answers what the predicates would: on segments with ends on a
+        /// small grid (touching, collinear and shared ends are common) or anywhere, the answer
+        /// is that of the four orientations and end-on-segment tests alone.
+        #[test]
+        fn the_box_test_changes_no_answer(
+            ends in proptest::collection::vec((-3i32..4, -3i32..4), 4),
+            jitter in proptest::collection::vec(-0.5f64..0.5, 8),
+            coarse in proptest::bool::ANY,
+        ) {
+            let q: Vec<Point> = ends
+                .iter()
+                .enumerate()
+                .map(|(k, &(x, y))| {
+                    let (dx, dy) = if coarse { (0.0, 0.0) } else { (jitter[2 * k], jitter[2 * k + 1]) };
+                    p(f64::from(x) + dx, f64::from(y) + dy)
+                })
+                .collect();
+            let (a, b, c, d) = (q[0], q[1], q[2], q[3]);
+            let (d1, d2, d3, d4) = (orient2d(c, d, a), orient2d(c, d, b), orient2d(a, b, c), orient2d(a, b, d));
+            let on = |p: Point, q: Point, r: Point| {
+                r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
+            };
+            let want = (d1 * d2 < 0.0 && d3 * d4 < 0.0)
+                || (d1 == 0.0 && on(c, d, a))
+                || (d2 == 0.0 && on(c, d, b))
+                || (d3 == 0.0 && on(a, b, c))
+                || (d4 == 0.0 && on(a, b, d));
+            proptest::prop_assert_eq!(segments_intersect(a, b, c, d), want);
+        }
     }
 
     #[test]
