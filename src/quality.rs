@@ -19,28 +19,32 @@ pub fn inverted_triangles(triangles: &[[u32; 3]], points: &[Point]) -> usize {
 pub fn distortion(triangles: &[[u32; 3]], source: &[Point], frame: &[Point]) -> Vec<f64> {
     triangles
         .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| source[i as usize]);
-            let [x, y, z] = t.map(|i| frame[i as usize]);
-            let (p0, p1) = (b - a, c - a);
-            let det = p0.perp_dot(p1);
-            if det == 0.0 || !det.is_finite() {
-                return f64::INFINITY;
-            }
-            // A = F P⁻¹ with P = [p0 p1], F = [f0 f1].
-            let (f0, f1) = (y - x, z - x);
-            let r0 = Point::new(p1.y, -p1.x) / det;
-            let r1 = Point::new(-p0.y, p0.x) / det;
-            let c0 = f0 * r0.x + f1 * r1.x;
-            let c1 = f0 * r0.y + f1 * r1.y;
-            let ratio = singular_value_ratio(c0.x, c1.x, c0.y, c1.y);
-            if ratio.is_nan() {
-                f64::INFINITY
-            } else {
-                ratio
-            }
-        })
+        .map(|&t| triangle_distortion(t, source, frame))
         .collect()
+}
+
+/// [`distortion`] of one triangle `t`, without a list (the relaxation of the mapped mesh asks
+/// for one star at a time).
+pub(crate) fn triangle_distortion(t: [u32; 3], source: &[Point], frame: &[Point]) -> f64 {
+    let [a, b, c] = t.map(|i| source[i as usize]);
+    let [x, y, z] = t.map(|i| frame[i as usize]);
+    let (p0, p1) = (b - a, c - a);
+    let det = p0.perp_dot(p1);
+    if det == 0.0 || !det.is_finite() {
+        return f64::INFINITY;
+    }
+    // A = F P⁻¹ with P = [p0 p1], F = [f0 f1].
+    let (f0, f1) = (y - x, z - x);
+    let r0 = Point::new(p1.y, -p1.x) / det;
+    let r1 = Point::new(-p0.y, p0.x) / det;
+    let c0 = f0 * r0.x + f1 * r1.x;
+    let c1 = f0 * r0.y + f1 * r1.y;
+    let ratio = singular_value_ratio(c0.x, c1.x, c0.y, c1.y);
+    if ratio.is_nan() {
+        f64::INFINITY
+    } else {
+        ratio
+    }
 }
 
 /// `σ_max / σ_min` of `[[a, b], [c, d]]`, from its split into a similarity part and an

@@ -36,17 +36,32 @@ pub(crate) fn relax_towards(
         return 0;
     }
     let star = crate::mesh::stars(triangles, n);
+    let distortion = |mapped: &[Point], g: u32| {
+        crate::quality::triangle_distortion(triangles[g as usize], rest, mapped)
+    };
     let worst = |mapped: &[Point], v: usize| -> f64 {
         star[v]
             .iter()
-            .map(|&g| distortion(rest, mapped, triangles[g as usize]))
+            .map(|&g| distortion(mapped, g))
             .fold(1.0, f64::max)
     };
+    // Every triangle's distortion, kept up to date as vertices move: a star none of whose
+    // vertices moved has the same worst distortion as before, read without recomputing it.
+    let mut known: Vec<f64> = (0..triangles.len() as u32)
+        .map(|g| distortion(mapped, g))
+        .collect();
     let mut moves = 0;
     for _ in 0..PASSES {
         let mut moved = false;
         for v in 0..n {
             if held.get(v).copied().unwrap_or(true) || star[v].is_empty() {
+                continue;
+            }
+            let before = star[v]
+                .iter()
+                .map(|&g| known[g as usize])
+                .fold(1.0, f64::max);
+            if before <= CALM {
                 continue;
             }
             let mut sum = Point::ZERO;
@@ -76,10 +91,6 @@ pub(crate) fn relax_towards(
             }
             let aim = sum / weight;
             let old = mapped[v];
-            let before = worst(mapped, v);
-            if before <= CALM {
-                continue;
-            }
             for step in [1.0, 0.5, 0.25] {
                 mapped[v] = old + (aim - old) * step;
                 let ok = star[v]
@@ -93,6 +104,9 @@ pub(crate) fn relax_towards(
             if mapped[v] != old {
                 moved = true;
                 moves += 1;
+                for &g in &star[v] {
+                    known[g as usize] = distortion(mapped, g);
+                }
             }
         }
         if !moved {
@@ -100,11 +114,6 @@ pub(crate) fn relax_towards(
         }
     }
     moves
-}
-
-/// The distortion of one triangle from `rest` to `mapped` (`quality::distortion`).
-fn distortion(rest: &[Point], mapped: &[Point], t: [u32; 3]) -> f64 {
-    crate::quality::distortion(&[t], rest, mapped)[0]
 }
 
 #[cfg(test)]
