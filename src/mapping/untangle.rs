@@ -248,9 +248,9 @@ impl Untangler {
     ///
     /// The program is `max z` subject to `z ≤ cᵢ + gᵢ·x`, one constraint per triangle; its
     /// answer is the highest feasible vertex (three constraints tight), the first in the order
-    /// `(i, j, l)` among equals, which [`Self::enumerate`] finds by trying every vertex. Most
+    /// `(i, j, l)` among equals, which [`enumerate`] finds by trying every vertex. Most
     /// vertices lie above the feasible region, so trying them costs a scan each; instead
-    /// [`Self::peak`] finds the answer among the few vertices that can be it, and the
+    /// [`peak`] finds the answer among the few vertices that can be it, and the
     /// enumeration only runs where that is not enough (issue 16: this is the composite walk's
     /// hottest code). `scratch` is reused from call to call.
     fn best_position(
@@ -396,12 +396,12 @@ fn peak(cons: &[Constraint], among: &mut Vec<usize>, eps: f64) -> Peak {
         if tri.contains(&m) {
             return Peak::Unknown;
         }
-        let swapped = (0..3).map(|r| {
+        let mut swapped = (0..3).map(|r| {
             let mut t = tri;
             t[r] = m;
             t
         });
-        match swapped.into_iter().find(|&t| surrounds(t)) {
+        match swapped.find(|&t| surrounds(t)) {
             Some(t) => tri = t,
             None => return Peak::Unknown,
         }
