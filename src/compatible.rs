@@ -225,8 +225,31 @@ pub(crate) fn build_accepted<T>(
     opts: &MorphOptions,
     accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
 ) -> Result<(Compatible, T)> {
+    let (tol, pairs) = checked_curve_pairs(source, target, opts)?;
+    build_accepted_from(source, target, opts, (tol, pairs), accept)
+}
+
+/// The first stage of [`build`] and [`build_accepted`]: the vertex budget checked, then the
+/// curve pairs ([`curve_pairs`]). Neither depends on [`MorphOptions::triangulated`], so
+/// automatic mode corresponds a hole set once for both sides it tries.
+pub(crate) fn checked_curve_pairs(
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+) -> Result<(Tolerances, Vec<CurvePair>)> {
     check_vertex_budget(source, target, opts)?;
-    let (tol, pairs) = curve_pairs(source, target, opts)?;
+    curve_pairs(source, target, opts)
+}
+
+/// [`build_accepted`] from the curve pairs that [`checked_curve_pairs`] gave for the same
+/// drawings and options (any [`MorphOptions::triangulated`]).
+pub(crate) fn build_accepted_from<T>(
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+    (tol, pairs): (Tolerances, Vec<CurvePair>),
+    accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
+) -> Result<(Compatible, T)> {
     let fix = |e| name_files(e, source, target);
     let tri = triangulate(&pairs, &tol, opts.triangulated).map_err(fix)?;
     let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;

@@ -18,7 +18,7 @@
 //! Holes that are not aligned as features still morph inside the shape (see
 //! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
 
-use crate::compatible::{build_accepted, Compatible, MorphOptions};
+use crate::compatible::{build_accepted_from, checked_curve_pairs, Compatible, MorphOptions};
 use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
@@ -282,10 +282,23 @@ pub(crate) fn build_part(
         s.controls.anchors.retain(|x| keep.contains(&x.name));
         t.controls.anchors.retain(|x| keep.contains(&x.name));
         let mut failure: Option<Error> = None;
-        for triangulated in [Side::Source, Side::Target] {
+        // One correspondence for both sides: it does not depend on the side triangulated, so
+        // where it fails, both would.
+        let corresponded = match checked_curve_pairs(&s, &t, inputs.opts) {
+            Ok(pairs) => Some(pairs),
+            Err(e) => {
+                log::debug!("part {}→{}: {e}", plan.source, plan.target);
+                failure = Some(e);
+                None
+            }
+        };
+        let sides = corresponded
+            .iter()
+            .flat_map(|p| [(Side::Source, p), (Side::Target, p)]);
+        for (triangulated, pairs) in sides {
             let mut o = inputs.opts.clone();
             o.triangulated = triangulated;
-            let checked = build_accepted(&s, &t, &o, moves_without_folding);
+            let checked = build_accepted_from(&s, &t, &o, pairs.clone(), moves_without_folding);
             match checked {
                 Ok((c, repair)) => {
                     let features = holes
