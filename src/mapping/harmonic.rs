@@ -41,11 +41,12 @@ pub struct Harmonic {
     /// Vertex → free index, or `NONE` for fixed vertices.
     free_index: Vec<u32>,
     free_vertices: Vec<u32>,
-    /// Per edge with both ends free, its slot in `values` (upper triangle), else `NONE`.
+    /// Per edge with both ends free, its slot in `values`, else `NONE`.
     off_slot: Vec<u32>,
-    /// Per free vertex, the slot of its diagonal entry.
+    /// Per free vertex, the slot of its diagonal entry in `values`.
     diag_slot: Vec<u32>,
     symbolic: Option<Arc<Symbolic>>,
+    /// The entries of `L_ff`, laid out as the factor reads them ([`Symbolic::permuted`]).
     values: Vec<f64>,
     weights: Vec<f64>,
     rhs: Mat<f64>,
@@ -68,19 +69,18 @@ struct Factored {
 /// numeric factorization reads the assembled values in place: faer's own numeric factorization
 /// permutes the whole matrix first, every time (issue 16: a quarter of the composite walk's
 /// factorization time). The layout is faer's own permutation of the pattern, computed once, so
-/// the factor is the same bit for bit.
+/// the factor is the same bit for bit; [`Harmonic`] assembles its values straight into it.
 #[derive(Debug)]
 struct Symbolic {
     cholesky: SymbolicCholesky<usize>,
     /// The permuted matrix's pattern, on the side the numeric factorization reads.
     permuted: SymbolicSparseColMat<usize>,
-    /// Per slot of [`Harmonic::values`], its place among the permuted matrix's values.
-    place: Vec<usize>,
 }
 
 impl Symbolic {
-    /// Analyses the upper-triangle `pattern` and lays it out in the factor's ordering.
-    fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<Self> {
+    /// Analyses the upper-triangle `pattern` and lays it out in the factor's ordering; also
+    /// returns, per slot of `pattern`, its place among the laid-out matrix's values.
+    fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<(Self, Vec<usize>)> {
         let fail = |e: &dyn std::fmt::Debug| {
             Error::internal(format!("harmonic map: symbolic factorization: {e:?}"))
         };
@@ -123,21 +123,13 @@ impl Symbolic {
             place[id as usize] = at;
         }
         let permuted = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
-        Ok(Symbolic {
-            cholesky,
-            permuted,
-            place,
-        })
+        Ok((Symbolic { cholesky, permuted }, place))
     }
 
-    /// The numeric factor of the matrix with `values` in the pattern's slots (upper triangle),
-    /// or `None` if it is not numerically positive definite.
+    /// The numeric factor of the matrix with `values` laid out as [`Symbolic::permuted`], or
+    /// `None` if it is not numerically positive definite.
     fn factor(&self, values: &[f64]) -> Option<Vec<f64>> {
-        let mut permuted = vec![0.0; values.len()];
-        for (&v, &at) in values.iter().zip(&self.place) {
-            permuted[at] = v;
-        }
-        let a = SparseColMatRef::new(self.permuted.as_ref(), &permuted);
+        let a = SparseColMatRef::new(self.permuted.as_ref(), values);
         let cholesky = &self.cholesky;
         let mut l = vec![0.0; cholesky.len_val()];
         let par = faer::get_global_parallelism();
@@ -242,8 +234,8 @@ impl Harmonic {
             let col = &row_idx[col_ptr[j]..col_ptr[j + 1]];
             (col_ptr[j] + col.binary_search(&i).unwrap_or(0)) as u32
         };
-        let diag_slot = (0..nf).map(|j| slot(j, j)).collect();
-        let off_slot = edges
+        let mut diag_slot: Vec<u32> = (0..nf).map(|j| slot(j, j)).collect();
+        let mut off_slot: Vec<u32> = edges
             .iter()
             .map(|&(a, b)| {
                 let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
@@ -257,7 +249,14 @@ impl Harmonic {
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(nf, nf, col_ptr, None, row_idx);
         let symbolic = if nf > 0 {
-            Some(Arc::new(Symbolic::new(&pattern)?))
+            // The slots, moved to where the factor's layout keeps them.
+            let (symbolic, place) = Symbolic::new(&pattern)?;
+            for s in diag_slot.iter_mut().chain(off_slot.iter_mut()) {
+                if *s != NONE {
+                    *s = place[*s as usize] as u32;
+                }
+            }
+            Some(Arc::new(symbolic))
         } else {
             None
         };
@@ -405,7 +404,7 @@ impl Harmonic {
 
     /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
     fn finish(&mut self, llt: &[f64], out: &mut [Point]) -> Result<()> {
-        let Some(symbolic) = self.symbolic.clone() else {
+        let Some(symbolic) = self.symbolic.as_deref() else {
             return Ok(());
         };
         let nf = self.free_vertices.len();
@@ -484,12 +483,16 @@ mod tests {
             }
             let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
             let rhs = Mat::from_fn(n, 2, |i, k| ((i * 31 + k * 17) % 13) as f64 - 6.0);
-            let ours = Symbolic::new(&pattern).unwrap();
+            let (ours, place) = Symbolic::new(&pattern).unwrap();
             match ours.cholesky.raw() {
                 SymbolicCholeskyRaw::Simplicial(_) => kinds.0 = true,
                 SymbolicCholeskyRaw::Supernodal(_) => kinds.1 = true,
             }
-            let l = ours.factor(&values).unwrap();
+            let mut laid_out = vec![0.0; values.len()];
+            for (&v, &at) in values.iter().zip(&place) {
+                laid_out[at] = v;
+            }
+            let l = ours.factor(&laid_out).unwrap();
             let mut got = rhs.clone();
             ours.solve(&l, got.as_mut()).unwrap();
             let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).unwrap();
