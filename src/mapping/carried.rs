@@ -45,25 +45,247 @@ pub(crate) struct Carried {
     features: Vec<Vec<[Attachment; 2]>>,
 }
 
-fn attach(boundary: &[Point], p: Point) -> Attachment {
-    // Boundary vertices in order of distance (ties by index). Only the nearest few set the
-    // radius and only those within it are kept, so the k nearest are selected and the kept
-    // ones sorted, not the whole boundary (for every feature vertex).
-    let order = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+/// The boundary vertices that carry `p`, by a scan of the whole boundary: every vertex within
+/// the radius (squared) `r2` that [`reach`] sets, as `(distance², index)` in that order (ties by
+/// index), and `r2`. The reference [`Nearby`] must agree with bit for bit; used as it is where
+/// no grid can be built (a boundary with a non-finite coordinate).
+fn carriers_by_scan(boundary: &[Point], p: Point) -> (Vec<(f64, u32)>, f64) {
+    // Only the nearest few set the radius and only those within it are kept, so the k nearest
+    // are selected and the kept ones sorted, not the whole boundary.
     let mut by_distance: Vec<(f64, u32)> = boundary
         .iter()
         .enumerate()
         .map(|(i, b)| (b.distance_squared(p), i as u32))
         .collect();
     let k = MIN_CARRIERS.min(by_distance.len());
-    let (nearest_k, kth, _) = by_distance.select_nth_unstable_by(k - 1, order);
-    let nearest = nearest_k.iter().min_by(|x, y| order(x, y)).unwrap_or(kth).0;
-    // Radius²: REACH times the distance, but wide enough for MIN_CARRIERS vertices, and a
-    // little beyond the last one kept so that every carrier has a positive weight.
-    let r2 = (REACH * REACH * nearest).max(kth.0) * (1.0 + 1e-6) + f64::MIN_POSITIVE;
-    let floor = 1e-12 * r2;
+    let (nearest_k, kth, _) = by_distance.select_nth_unstable_by(k - 1, by_order);
+    let nearest = nearest_k
+        .iter()
+        .min_by(|x, y| by_order(x, y))
+        .unwrap_or(kth)
+        .0;
+    let r2 = reach(nearest, kth.0);
     by_distance.retain(|c| c.0 < r2);
-    by_distance.sort_unstable_by(order);
+    by_distance.sort_unstable_by(by_order);
+    (by_distance, r2)
+}
+
+/// Distance first, then index: the order carriers are kept and summed in.
+fn by_order(x: &(f64, u32), y: &(f64, u32)) -> std::cmp::Ordering {
+    x.0.total_cmp(&y.0).then(x.1.cmp(&y.1))
+}
+
+/// Radius² of a feature vertex's carriers from the squared distances of its nearest and its
+/// [`MIN_CARRIERS`]-th nearest boundary vertex: [`REACH`] times the distance, but wide enough
+/// for `MIN_CARRIERS` vertices, and a little beyond the last one kept so that every carrier has
+/// a positive weight.
+fn reach(nearest: f64, kth: f64) -> f64 {
+    (REACH * REACH * nearest).max(kth) * (1.0 + 1e-6) + f64::MIN_POSITIVE
+}
+
+/// A uniform grid over one side's boundary vertices, so that a feature vertex's carriers are
+/// found among the cells around it instead of by measuring the whole boundary (issue 16: the
+/// carried model measured every boundary vertex for every feature vertex, a tenth of the
+/// slowest corpus pair's CPU). It finds exactly the carriers of [`carriers_by_scan`], in the
+/// same order and with the same distances, so every output keeps its bits.
+#[derive(Debug)]
+struct Nearby<'a> {
+    points: &'a [Point],
+    /// The lower corner of the grid and the side of a cell.
+    origin: Point,
+    cell: f64,
+    /// Cells across and up.
+    nx: usize,
+    ny: usize,
+    /// Per cell (row-major), the start of its vertices in `items`; one more entry at the end.
+    start: Vec<u32>,
+    /// Vertex indices, ascending within each cell.
+    items: Vec<u32>,
+    /// Slack for rounding in the cell bounds, far below any distance that matters.
+    slack: f64,
+}
+
+/// Largest number of cells along one side of a [`Nearby`] grid.
+const MAX_CELLS: usize = 512;
+
+impl<'a> Nearby<'a> {
+    /// The grid over `points`; `None` when there are none or one is not finite.
+    fn new(points: &'a [Point]) -> Option<Self> {
+        if points.iter().any(|q| !q.is_finite()) {
+            return None;
+        }
+        let (lo, hi) = crate::geometry::bounding_box(points.iter().copied())?;
+        let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+        let side = w.max(h);
+        // About one vertex per cell, no more than MAX_CELLS cells along a side.
+        let cell = if side > 0.0 {
+            (w * h / points.len() as f64)
+                .sqrt()
+                .max(side / MAX_CELLS as f64)
+        } else {
+            1.0
+        };
+        let count = |extent: f64| ((extent / cell) as usize + 1).clamp(1, MAX_CELLS);
+        let (nx, ny) = (count(w), count(h));
+        let scale = lo.abs().max(hi.abs()).max_element().max(side);
+        let mut grid = Nearby {
+            points,
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            start: vec![0; nx * ny + 1],
+            items: vec![0; points.len()],
+            slack: 1e-9 * scale,
+        };
+        let cells: Vec<usize> = points
+            .iter()
+            .map(|&q| {
+                let (ix, iy) = grid.cell_of(q);
+                iy * nx + ix
+            })
+            .collect();
+        for &c in &cells {
+            grid.start[c + 1] += 1;
+        }
+        for c in 0..nx * ny {
+            grid.start[c + 1] += grid.start[c];
+        }
+        let mut fill = grid.start.clone();
+        for (i, &c) in cells.iter().enumerate() {
+            grid.items[fill[c] as usize] = i as u32;
+            fill[c] += 1;
+        }
+        Some(grid)
+    }
+
+    /// The cell of `q`, clamped into the grid.
+    fn cell_of(&self, q: Point) -> (usize, usize) {
+        let index = |v: f64, o: f64, n: usize| (((v - o) / self.cell).max(0.0) as usize).min(n - 1);
+        (
+            index(q.x, self.origin.x, self.nx),
+            index(q.y, self.origin.y, self.ny),
+        )
+    }
+
+    /// Calls `visit` with `(distance², index)` of every vertex in cells `x0..=x1` × `y0..=y1`.
+    fn scan(
+        &self,
+        p: Point,
+        (x0, x1): (usize, usize),
+        (y0, y1): (usize, usize),
+        mut visit: impl FnMut(f64, u32),
+    ) {
+        for iy in y0..=y1 {
+            let row = iy * self.nx;
+            let (s, e) = (
+                self.start[row + x0] as usize,
+                self.start[row + x1 + 1] as usize,
+            );
+            for &i in &self.items[s..e] {
+                visit(self.points[i as usize].distance_squared(p), i);
+            }
+        }
+    }
+
+    /// [`carriers_by_scan`]'s answer for `p` (a finite point), from the cells around it.
+    fn carriers(&self, p: Point) -> (Vec<(f64, u32)>, f64) {
+        let k = MIN_CARRIERS.min(self.points.len());
+        // The k smallest squared distances, ascending, from rings of cells around p's cell
+        // until every cell not yet seen lies farther than the k-th.
+        let mut best = [f64::INFINITY; MIN_CARRIERS];
+        let keep = |best: &mut [f64; MIN_CARRIERS], d2: f64| {
+            if d2 < best[k - 1] {
+                let mut j = k - 1;
+                while j > 0 && best[j - 1] > d2 {
+                    best[j] = best[j - 1];
+                    j -= 1;
+                }
+                best[j] = d2;
+            }
+        };
+        let (cx, cy) = self.cell_of(p);
+        let (o, c) = (self.origin, self.cell);
+        for r in 0.. {
+            let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(self.nx - 1));
+            let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(self.ny - 1));
+            // The ring at Chebyshev distance r: its bottom and top rows, then its side columns.
+            if cy >= r {
+                self.scan(p, (x0, x1), (cy - r, cy - r), |d2, _| keep(&mut best, d2));
+            }
+            if r > 0 && cy + r < self.ny {
+                self.scan(p, (x0, x1), (cy + r, cy + r), |d2, _| keep(&mut best, d2));
+            }
+            if r > 0 {
+                // The rows strictly between the ring's bottom and top.
+                let inner = ((cy + 1).saturating_sub(r), (cy + r - 1).min(self.ny - 1));
+                if cx >= r {
+                    self.scan(p, (cx - r, cx - r), inner, |d2, _| keep(&mut best, d2));
+                }
+                if cx + r < self.nx {
+                    self.scan(p, (cx + r, cx + r), inner, |d2, _| keep(&mut best, d2));
+                }
+            }
+            let (left, right) = (x0 > 0, x1 + 1 < self.nx);
+            let (below, above) = (y0 > 0, y1 + 1 < self.ny);
+            if !(left || right || below || above) {
+                break;
+            }
+            // Every vertex not yet seen lies beyond one of the square's open sides.
+            let mut bound = f64::INFINITY;
+            if left {
+                bound = bound.min(p.x - (o.x + x0 as f64 * c));
+            }
+            if right {
+                bound = bound.min(o.x + (x1 + 1) as f64 * c - p.x);
+            }
+            if below {
+                bound = bound.min(p.y - (o.y + y0 as f64 * c));
+            }
+            if above {
+                bound = bound.min(o.y + (y1 + 1) as f64 * c - p.y);
+            }
+            let bound = bound - self.slack;
+            if bound > 0.0 && best[k - 1] < bound * bound {
+                break;
+            }
+        }
+        let r2 = reach(best[0], best[k - 1]);
+        // Every vertex within the radius, from the cells its disc meets (one more cell each
+        // way for rounding in the cell assignment).
+        let radius = r2.sqrt() + self.slack;
+        let span = |v: f64, o: f64, n: usize| {
+            let a = ((v - radius - o) / c).floor() - 1.0;
+            let b = ((v + radius - o) / c).floor() + 1.0;
+            (a.max(0.0) as usize).min(n - 1)..=(b.max(0.0) as usize).min(n - 1)
+        };
+        let (xs, ys) = (span(p.x, o.x, self.nx), span(p.y, o.y, self.ny));
+        let mut kept = Vec::new();
+        self.scan(
+            p,
+            (*xs.start(), *xs.end()),
+            (*ys.start(), *ys.end()),
+            |d2, i| {
+                if d2 < r2 {
+                    kept.push((d2, i));
+                }
+            },
+        );
+        // `by_order` on integer keys: the distances are finite and never negative (nor −0),
+        // and there the bits of an `f64` order as the numbers do.
+        kept.sort_unstable_by_key(|&(d2, i)| (d2.to_bits(), i));
+        (kept, r2)
+    }
+}
+
+/// Attaches `p` to the boundary: its carriers (from `near` when there is a grid, else by a
+/// scan) and its side's half of the best fit.
+fn attach(boundary: &[Point], near: Option<&Nearby<'_>>, p: Point) -> Attachment {
+    let (by_distance, r2) = match near {
+        Some(g) if p.is_finite() => g.carriers(p),
+        _ => carriers_by_scan(boundary, p),
+    };
+    let floor = 1e-12 * r2;
     let carriers: Vec<(u32, f64)> = by_distance
         .iter()
         .map(|&(d2, i)| (i, 1.0 / d2.max(floor) - 1.0 / r2))
@@ -132,12 +354,13 @@ impl Carried {
         if b0.is_empty() || b1.len() != b0.len() {
             return None;
         }
+        let (g0, g1) = (Nearby::new(b0), Nearby::new(b1));
         let features = features
             .iter()
             .map(|(f0, f1)| {
                 f0.iter()
                     .zip(f1.iter())
-                    .map(|(&p, &q)| [attach(b0, p), attach(b1, q)])
+                    .map(|(&p, &q)| [attach(b0, g0.as_ref(), p), attach(b1, g1.as_ref(), q)])
                     .collect()
             })
             .collect();
@@ -196,8 +419,67 @@ mod tests {
             let b: Vec<Point> = boundary.iter().map(|&(x, y)| Point::new(x as f64, y as f64)).collect();
             let q = Point::new(p.0 as f64 * 0.5, p.1 as f64);
             let bits = |c: &[(u32, f64)]| c.iter().map(|&(i, w)| (i, w.to_bits())).collect::<Vec<_>>();
-            prop_assert_eq!(bits(&attach(&b, q).carriers), bits(&attach_by_full_sort(&b, q)));
+            prop_assert_eq!(bits(&attach(&b, None, q).carriers), bits(&attach_by_full_sort(&b, q)));
         }
+    }
+
+    /// `Nearby`'s carriers against the scan's, bit for bit: distances, indices, order and radius.
+    fn assert_grid_matches_scan(b: &[Point], q: Point) -> Result<(), TestCaseError> {
+        let bits = |(c, r2): (Vec<(f64, u32)>, f64)| {
+            (
+                c.iter().map(|&(d, i)| (d.to_bits(), i)).collect::<Vec<_>>(),
+                r2.to_bits(),
+            )
+        };
+        let grid = Nearby::new(b).expect("finite, non-empty boundary");
+        prop_assert_eq!(bits(grid.carriers(q)), bits(carriers_by_scan(b, q)));
+        Ok(())
+    }
+
+    proptest! {
+        /// On a coarse lattice (equal distances everywhere, repeated vertices, queries on a
+        /// vertex, outside the boundary's box, far away), stretched to thin boxes, and with
+        /// fewer vertices than MIN_CARRIERS.
+        #[test]
+        fn the_grid_finds_the_carriers_of_the_scan_on_a_lattice(
+            boundary in proptest::collection::vec((-8i32..9, -8i32..9), 1..120),
+            p in (-40i32..41, -40i32..41),
+            stretch in prop_oneof![Just(1.0f64), Just(1e-3), Just(250.0)],
+        ) {
+            let b: Vec<Point> = boundary.iter().map(|&(x, y)| Point::new(x as f64, y as f64 * stretch)).collect();
+            assert_grid_matches_scan(&b, Point::new(p.0 as f64 * 0.25, p.1 as f64 * 0.25 * stretch))?;
+        }
+
+        /// Random points, clustered or spread, in a box far from the origin (so the cell
+        /// bounds round), queried anywhere around them.
+        #[test]
+        fn the_grid_finds_the_carriers_of_the_scan_anywhere(
+            boundary in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 1..300),
+            cluster in proptest::bool::ANY,
+            offset in prop_oneof![Just(0.0f64), Just(1e6), Just(-3.7e3)],
+            size in prop_oneof![Just(1.0f64), Just(1e-6), Just(4e4)],
+            p in (-0.5f64..1.5, -0.5f64..1.5),
+        ) {
+            let place = |x: f64| offset + size * x;
+            let b: Vec<Point> = boundary
+                .iter()
+                .map(|&(x, y)| if cluster { Point::new(place(x * x * x), place(y * y * y)) } else { Point::new(place(x), place(y)) })
+                .collect();
+            assert_grid_matches_scan(&b, Point::new(place(p.0), place(p.1)))?;
+        }
+    }
+
+    #[test]
+    fn a_boundary_with_a_non_finite_vertex_has_no_grid_and_is_scanned() {
+        let b = [
+            Point::new(0.0, 0.0),
+            Point::new(f64::NAN, 1.0),
+            Point::new(2.0, 0.0),
+        ];
+        assert!(Nearby::new(&b).is_none());
+        assert!(Nearby::new(&[]).is_none());
+        let a = attach(&b, None, Point::new(1.0, 0.5));
+        assert_eq!(a.carriers.len(), 2);
     }
 
     /// The best fit as first written: both sides' sums every time.
@@ -242,7 +524,7 @@ mod tests {
                 .iter()
                 .map(|&(x, y)| if collapse { Point::new(1.5, -2.0) } else { Point::new(x, y) })
                 .collect();
-            let a = attach(&b, Point::new(p.0, p.1));
+            let a = attach(&b, None, Point::new(p.0, p.1));
             let bits = |q: Point| (q.x.to_bits(), q.y.to_bits());
             prop_assert_eq!(bits(carry(&a, &to)), bits(carry_both_sides(&a, &b, &to)));
             prop_assert_eq!(bits(carry(&a, &b)), bits(carry_both_sides(&a, &b, &b)));
