@@ -271,8 +271,8 @@ impl<'a> Nearby<'a> {
                 }
             },
         );
-        // `by_order` on integer keys: the distances are finite and never negative (nor −0),
-        // and there the bits of an `f64` order as the numbers do.
+        // `by_order` on integer keys: a squared distance is never negative, −0 or NaN (the
+        // points are finite), and there the bits of an `f64` order as the numbers do.
         kept.sort_unstable_by_key(|&(d2, i)| (d2.to_bits(), i));
         (kept, r2)
     }
