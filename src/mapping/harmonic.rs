@@ -185,6 +185,52 @@ fn same_metric(a: &[Point], b: &[Point]) -> bool {
             .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
 }
 
+/// Per triangle, the index in `edges` (sorted, each `(lo, hi)` once, as
+/// [`crate::mesh::edges`] gives them) of the edge opposite each corner, `NONE` if absent. Each
+/// lower end's edges are one short run of the sorted list, found from the run's start instead
+/// of by a binary search over all edges (issue 16: the searches were a quarter of the harmonic
+/// map's set-up, which every composite map attempt pays).
+fn opposite_edges(
+    triangles: &[[u32; 3]],
+    edges: &[(u32, u32)],
+    vertex_count: usize,
+) -> Vec<[u32; 3]> {
+    let mut run = vec![0u32; vertex_count + 1];
+    for &(a, _) in edges {
+        run[a as usize + 1] += 1;
+    }
+    for v in 0..vertex_count {
+        run[v + 1] += run[v];
+    }
+    let find = |a: u32, b: u32| {
+        let (lo, hi) = (a.min(b) as usize, a.max(b));
+        let (s, e) = (run[lo] as usize, run[lo + 1] as usize);
+        edges[s..e]
+            .iter()
+            .position(|&(_, x)| x == hi)
+            .map_or(NONE, |k| (s + k) as u32)
+    };
+    triangles
+        .iter()
+        .map(|t| [find(t[1], t[2]), find(t[2], t[0]), find(t[0], t[1])])
+        .collect()
+}
+
+/// The upper-triangle pattern of the free vertices' matrix in compressed columns (`col_ptr`,
+/// rows): column `j` holds the rows `i ≤ j` of its free neighbours and itself, ascending. Free
+/// indices follow vertex order and `edges` are sorted with their lower end first, so a column's
+/// off-diagonal rows arrive ascending and all below its diagonal, which is put last: no sort,
+/// and no list per column.
+fn upper_pattern(edges: &[(u32, u32)], free_index: &[u32], nf: usize) -> (Vec<usize>, Vec<usize>) {
+    let off_diagonal = edges.iter().filter_map(|&(a, b)| {
+        let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
+        (fa != NONE && fb != NONE).then_some((fa.max(fb), fa.min(fb)))
+    });
+    let diagonal = (0..nf as u32).map(|j| (j, j));
+    let (col_ptr, rows) = crate::mesh::compressed_rows(nf, off_diagonal.chain(diagonal));
+    (col_ptr, rows.into_iter().map(|i| i as usize).collect())
+}
+
 impl Harmonic {
     /// Prepares the solver: `fixed[v]` marks the vertices whose positions are prescribed.
     /// Errors if an index is out of range.
@@ -198,13 +244,7 @@ impl Harmonic {
             return Err(Error::internal("harmonic map: index out of range"));
         }
         let edges = crate::mesh::edges(triangles);
-        let find = |a: u32, b: u32| edges.binary_search(&(a.min(b), a.max(b))).map(|e| e as u32);
-        let opposite = triangles
-            .iter()
-            .map(|t| {
-                [find(t[1], t[2]), find(t[2], t[0]), find(t[0], t[1])].map(|e| e.unwrap_or(NONE))
-            })
-            .collect();
+        let opposite = opposite_edges(triangles, &edges, vertex_count);
         let mut free_index = vec![NONE; vertex_count];
         let mut free_vertices = Vec::new();
         for v in 0..vertex_count {
@@ -214,22 +254,7 @@ impl Harmonic {
             }
         }
         let nf = free_vertices.len();
-        // Upper-triangle pattern: column j holds rows i ≤ j.
-        let mut cols: Vec<Vec<usize>> = (0..nf).map(|j| vec![j]).collect();
-        for &(a, b) in &edges {
-            let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
-            if fa != NONE && fb != NONE {
-                let (i, j) = (fa.min(fb) as usize, fa.max(fb) as usize);
-                cols[j].push(i);
-            }
-        }
-        let mut col_ptr = vec![0usize];
-        let mut row_idx = Vec::new();
-        for c in &mut cols {
-            c.sort_unstable();
-            row_idx.extend_from_slice(c);
-            col_ptr.push(row_idx.len());
-        }
+        let (col_ptr, row_idx) = upper_pattern(&edges, &free_index, nf);
         let slot = |i: usize, j: usize| -> u32 {
             let col = &row_idx[col_ptr[j]..col_ptr[j + 1]];
             (col_ptr[j] + col.binary_search(&i).unwrap_or(0)) as u32
@@ -439,6 +464,52 @@ mod tests {
     use super::*;
     use crate::triangulation::tests::{circle, pair, subdivided};
     use crate::triangulation::triangulate;
+
+    proptest::proptest! {
+        /// The opposite edges and the pattern are those of a binary search over all edges and
+        /// of a sorted list per column (the construction they replace), on triangle soups with
+        /// repeated, isolated and fixed vertices.
+        #[test]
+        fn opposite_edges_and_pattern_are_the_searched_and_sorted_ones(
+            soup in proptest::collection::vec((0u32..30, 0u32..30, 0u32..30), 1..60),
+            fixed in proptest::collection::vec(proptest::bool::weighted(0.3), 30),
+        ) {
+            let triangles: Vec<[u32; 3]> = soup.iter().map(|&(a, b, c)| [a, b, c]).collect();
+            let edges = crate::mesh::edges(&triangles);
+            let search = |a: u32, b: u32| {
+                edges.binary_search(&(a.min(b), a.max(b))).map_or(NONE, |e| e as u32)
+            };
+            let searched: Vec<[u32; 3]> = triangles
+                .iter()
+                .map(|t| [search(t[1], t[2]), search(t[2], t[0]), search(t[0], t[1])])
+                .collect();
+            proptest::prop_assert_eq!(opposite_edges(&triangles, &edges, 30), searched);
+
+            let mut free_index = vec![NONE; 30];
+            let mut nf = 0;
+            for (v, f) in free_index.iter_mut().zip(&fixed) {
+                if !f {
+                    *v = nf as u32;
+                    nf += 1;
+                }
+            }
+            let mut cols: Vec<Vec<usize>> = (0..nf).map(|j| vec![j]).collect();
+            for &(a, b) in &edges {
+                let (fa, fb) = (free_index[a as usize], free_index[b as usize]);
+                if fa != NONE && fb != NONE {
+                    cols[fa.max(fb) as usize].push(fa.min(fb) as usize);
+                }
+            }
+            let mut col_ptr = vec![0usize];
+            let mut rows = Vec::new();
+            for c in &mut cols {
+                c.sort_unstable();
+                rows.extend_from_slice(c);
+                col_ptr.push(rows.len());
+            }
+            proptest::prop_assert_eq!(upper_pattern(&edges, &free_index, nf), (col_ptr, rows));
+        }
+    }
 
     /// The factor laid out in advance solves bit for bit as faer's own `Llt` does, on grid
     /// Laplacians (shifted, so positive definite) small enough for faer's simplicial factor
