@@ -22,10 +22,16 @@ use crate::geometry::Point;
 /// triangle is `(v, a, b)`), and the mesh's vertex neighbours.
 #[derive(Debug, Clone)]
 pub(crate) struct Untangler {
-    stars: Vec<Vec<[u32; 2]>>,
-    /// Per vertex, the indices of its triangles (same order as `stars`).
-    incident: Vec<Vec<u32>>,
-    rings: Vec<Vec<u32>>,
+    /// Vertex `v`'s entries of `stars` and `incident` are `star_start[v]..star_start[v + 1]`
+    /// (compressed rows: the untangler is set up once per composite map, and a list per vertex
+    /// was a tenth of that map's set-up, issue 16).
+    star_start: Vec<u32>,
+    stars: Vec<[u32; 2]>,
+    /// The indices of the triangles (same order as `stars`).
+    incident: Vec<u32>,
+    /// Vertex `v`'s neighbours, ascending, are `rings[ring_start[v]..ring_start[v + 1]]`.
+    ring_start: Vec<usize>,
+    rings: Vec<u32>,
     fixed: Vec<bool>,
 }
 
@@ -41,21 +47,58 @@ impl Untangler {
     /// vertices; `fixed` vertices never move.
     pub(crate) fn new(triangles: &[[u32; 3]], fixed: &[bool]) -> Self {
         let n = fixed.len();
-        let mut stars = vec![Vec::new(); n];
-        let mut incident = vec![Vec::new(); n];
-        for (f, t) in triangles.iter().enumerate() {
-            for k in 0..3 {
-                stars[t[k] as usize].push([t[(k + 1) % 3], t[(k + 2) % 3]]);
-                incident[t[k] as usize].push(f as u32);
-            }
+        // Each vertex's triangles in triangle order, as a list per vertex would hold them.
+        let corners = || {
+            triangles
+                .iter()
+                .enumerate()
+                .flat_map(|(f, t)| (0..3).map(move |k| (t[k], (f as u32, k))))
+        };
+        let mut star_start = vec![0u32; n + 1];
+        for (v, _) in corners() {
+            star_start[v as usize + 1] += 1;
         }
-        let rings = crate::mesh::one_rings(triangles, n);
+        for v in 0..n {
+            star_start[v + 1] += star_start[v];
+        }
+        let mut fill = star_start.clone();
+        let mut stars = vec![[0u32; 2]; 3 * triangles.len()];
+        let mut incident = vec![0u32; 3 * triangles.len()];
+        for (v, (f, k)) in corners() {
+            let t = &triangles[f as usize];
+            let at = fill[v as usize] as usize;
+            stars[at] = [t[(k + 1) % 3], t[(k + 2) % 3]];
+            incident[at] = f;
+            fill[v as usize] += 1;
+        }
+        // The one-rings of `mesh::one_rings`: the sorted edges handed out to both ends in
+        // turn, so each ring comes ascending.
+        let edges = crate::mesh::edges(triangles);
+        let (ring_start, rings) =
+            crate::mesh::compressed_rows(n, edges.iter().flat_map(|&(a, b)| [(a, b), (b, a)]));
         Untangler {
+            star_start,
             stars,
             incident,
+            ring_start,
             rings,
             fixed: fixed.to_vec(),
         }
+    }
+
+    /// The triangles of `v` as their counter-clockwise opposite edges.
+    fn star(&self, v: usize) -> &[[u32; 2]] {
+        &self.stars[self.star_start[v] as usize..self.star_start[v + 1] as usize]
+    }
+
+    /// The indices of the triangles of `v`, in the order of [`Self::star`].
+    fn incident(&self, v: usize) -> &[u32] {
+        &self.incident[self.star_start[v] as usize..self.star_start[v + 1] as usize]
+    }
+
+    /// The neighbours of `v`, ascending.
+    fn ring(&self, v: usize) -> &[u32] {
+        &self.rings[self.ring_start[v]..self.ring_start[v + 1]]
     }
 
     /// Moves free vertices of the triangles for which `bad` holds until none does or the sweeps
@@ -93,7 +136,7 @@ impl Untangler {
             // Vertices that could not be freed last sweep bring their free neighbours.
             for &v in &stuck {
                 active.extend(
-                    self.rings[v as usize]
+                    self.ring(v as usize)
                         .iter()
                         .filter(|&&w| !self.fixed[w as usize]),
                 );
@@ -116,7 +159,7 @@ impl Untangler {
                 }
             }
             for &v in &active {
-                tangled.extend_from_slice(&self.incident[v as usize]);
+                tangled.extend_from_slice(self.incident(v as usize));
             }
             tangled.sort_unstable();
             tangled.dedup();
@@ -140,13 +183,13 @@ impl Untangler {
     /// of its star was and none flips; an exact similarity of `rest` is left untouched.
     pub(crate) fn improve(&self, triangles: &[[u32; 3]], rest: &[Point], points: &mut [Point]) {
         let rest_quality: Vec<f64> = triangles.iter().map(|t| quality(t, rest)).collect();
-        let incident = &self.incident;
+        let incident = |v: usize| self.incident(v);
         let relative = |f: u32, pts: &[Point]| {
             let f = f as usize;
             quality(&triangles[f], pts) / rest_quality[f].max(f64::MIN_POSITIVE)
         };
         let star_min = |v: usize, pts: &[Point]| -> f64 {
-            incident[v]
+            incident(v)
                 .iter()
                 .map(|&f| relative(f, pts))
                 .fold(f64::INFINITY, f64::min)
@@ -156,7 +199,7 @@ impl Untangler {
         // far settles it (the same minimum, in the same order, when it is above).
         let star_min_above = |v: usize, pts: &[Point], bound: f64| -> Option<f64> {
             let mut q = f64::INFINITY;
-            for &f in &incident[v] {
+            for &f in incident(v) {
                 let r = relative(f, pts);
                 if r <= bound {
                     return None;
@@ -179,7 +222,7 @@ impl Untangler {
         for sweep in 0..IMPROVE_SWEEPS {
             if sweep > 0 {
                 for (v, _) in changed.iter().enumerate().filter(|(_, &c)| c) {
-                    for &f in &incident[v] {
+                    for &f in incident(v) {
                         distorted[f as usize] = is_distorted(f as usize, points);
                     }
                 }
@@ -197,12 +240,12 @@ impl Untangler {
             now_changed.fill(false);
             for &v in &active {
                 let v = v as usize;
-                if !changed[v] && !self.rings[v].iter().any(|&w| changed[w as usize]) {
+                if !changed[v] && !self.ring(v).iter().any(|&w| changed[w as usize]) {
                     continue;
                 }
                 let here = points[v];
                 let mut best = (star_min(v, points), here);
-                let ring = &self.rings[v];
+                let ring = self.ring(v);
                 let centroid = ring
                     .iter()
                     .fold(Point::ZERO, |a, &w| a + points[w as usize])
@@ -211,7 +254,7 @@ impl Untangler {
                 // Where each triangle of the star would put `v` to regain its rest shape (its
                 // opposite edge kept), averaged.
                 let mut shaped = Point::ZERO;
-                for &[a, b] in &self.stars[v] {
+                for &[a, b] in self.star(v) {
                     let (a, b) = (a as usize, b as usize);
                     let (ra, rb, rv) = (rest[a], rest[b], rest[v]);
                     let (e, r) = (rb - ra, rv - ra);
@@ -221,7 +264,7 @@ impl Untangler {
                     let d = points[b] - points[a];
                     shaped += points[a] + Point::new(z.x * d.x - z.y * d.y, z.x * d.y + z.y * d.x);
                 }
-                let shaped = shaped / self.stars[v].len().max(1) as f64;
+                let shaped = shaped / self.star(v).len().max(1) as f64;
                 for goal in [centroid, shaped].into_iter().chain(lp) {
                     for alpha in [1.0, 0.5, 0.25] {
                         points[v] = here + (goal - here) * alpha;
@@ -287,7 +330,7 @@ impl Untangler {
         let o = points[v];
         cons.clear();
         let mut scale = 0.0f64;
-        for &[a, b] in &self.stars[v] {
+        for &[a, b] in self.star(v) {
             let (a, b) = (points[a as usize], points[b as usize]);
             let d = a - b;
             let g = Point::new(d.y, -d.x);
@@ -662,7 +705,7 @@ mod tests {
             let bits = |r: Option<(Point, f64)>| r.map(|(p, z)| (p.x.to_bits(), p.y.to_bits(), z.to_bits()));
             proptest::prop_assert_eq!(
                 bits(u.best_position(0, &pts, &mut Scratch::default())),
-                bits(best_position_reference(&u.stars[0], pts[0], &pts))
+                bits(best_position_reference(u.star(0), pts[0], &pts))
             );
         }
     }
@@ -706,7 +749,7 @@ mod tests {
                 let u = Untangler::new(&tris, &fixed);
                 let mut scratch = Scratch::default();
                 let got = u.best_position(0, &pts, &mut scratch);
-                let want = best_position_reference(&u.stars[0], pts[0], &pts);
+                let want = best_position_reference(u.star(0), pts[0], &pts);
                 let bits = |r: Option<(Point, f64)>| {
                     r.map(|(p, z)| (p.x.to_bits(), p.y.to_bits(), z.to_bits()))
                 };
@@ -723,6 +766,34 @@ mod tests {
             by_peak * 10 >= cases * 9,
             "{by_peak} of {cases} by the peak"
         );
+    }
+
+    proptest::proptest! {
+        /// The compressed stars, triangle indices and rings hold, vertex by vertex and in
+        /// order, what a list per vertex and `mesh::one_rings` hold, on triangle soups with
+        /// repeated and isolated vertices.
+        #[test]
+        fn compressed_stars_and_rings_are_the_lists_per_vertex(
+            soup in proptest::collection::vec((0u32..25, 0u32..25, 0u32..25), 0..50),
+        ) {
+            let triangles: Vec<[u32; 3]> = soup.iter().map(|&(a, b, c)| [a, b, c]).collect();
+            let n = 25;
+            let u = Untangler::new(&triangles, &vec![false; n]);
+            let mut stars = vec![Vec::new(); n];
+            let mut incident = vec![Vec::new(); n];
+            for (f, t) in triangles.iter().enumerate() {
+                for k in 0..3 {
+                    stars[t[k] as usize].push([t[(k + 1) % 3], t[(k + 2) % 3]]);
+                    incident[t[k] as usize].push(f as u32);
+                }
+            }
+            let rings = crate::mesh::one_rings(&triangles, n);
+            for v in 0..n {
+                proptest::prop_assert_eq!(u.star(v), stars[v].as_slice());
+                proptest::prop_assert_eq!(u.incident(v), incident[v].as_slice());
+                proptest::prop_assert_eq!(u.ring(v), rings[v].as_slice());
+            }
+        }
     }
 
     fn fan() -> (Vec<[u32; 3]>, Vec<bool>) {
