@@ -98,7 +98,7 @@ struct Nearby<'a> {
     nx: usize,
     ny: usize,
     /// Per cell (row-major), the start of its vertices in `items`; one more entry at the end.
-    start: Vec<u32>,
+    start: Vec<usize>,
     /// Vertex indices, ascending within each cell.
     items: Vec<u32>,
     /// Slack for rounding in the cell bounds, far below any distance that matters.
@@ -134,28 +134,19 @@ impl<'a> Nearby<'a> {
             cell,
             nx,
             ny,
-            start: vec![0; nx * ny + 1],
-            items: vec![0; points.len()],
+            start: Vec::new(),
+            items: Vec::new(),
             slack: 1e-9 * scale,
         };
-        let cells: Vec<usize> = points
+        let cells: Vec<(u32, u32)> = points
             .iter()
-            .map(|&q| {
+            .enumerate()
+            .map(|(i, &q)| {
                 let (ix, iy) = grid.cell_of(q);
-                iy * nx + ix
+                ((iy * nx + ix) as u32, i as u32)
             })
             .collect();
-        for &c in &cells {
-            grid.start[c + 1] += 1;
-        }
-        for c in 0..nx * ny {
-            grid.start[c + 1] += grid.start[c];
-        }
-        let mut fill = grid.start.clone();
-        for (i, &c) in cells.iter().enumerate() {
-            grid.items[fill[c] as usize] = i as u32;
-            fill[c] += 1;
-        }
+        (grid.start, grid.items) = crate::mesh::compressed_rows(nx * ny, cells.iter().copied());
         Some(grid)
     }
 
@@ -178,10 +169,7 @@ impl<'a> Nearby<'a> {
     ) {
         for iy in y0..=y1 {
             let row = iy * self.nx;
-            let (s, e) = (
-                self.start[row + x0] as usize,
-                self.start[row + x1 + 1] as usize,
-            );
+            let (s, e) = (self.start[row + x0], self.start[row + x1 + 1]);
             for &i in &self.items[s..e] {
                 visit(self.points[i as usize].distance_squared(p), i);
             }

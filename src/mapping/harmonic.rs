@@ -195,19 +195,15 @@ fn opposite_edges(
     edges: &[(u32, u32)],
     vertex_count: usize,
 ) -> Vec<[u32; 3]> {
-    let mut run = vec![0u32; vertex_count + 1];
-    for &(a, _) in edges {
-        run[a as usize + 1] += 1;
-    }
-    for v in 0..vertex_count {
-        run[v + 1] += run[v];
-    }
+    // Row `lo` holds the upper ends of `lo`'s edges, in the order (and so at the indices) of
+    // `edges`.
+    let (run, upper) = crate::mesh::compressed_rows(vertex_count, edges.iter().copied());
     let find = |a: u32, b: u32| {
         let (lo, hi) = (a.min(b) as usize, a.max(b));
-        let (s, e) = (run[lo] as usize, run[lo + 1] as usize);
-        edges[s..e]
+        let (s, e) = (run[lo], run[lo + 1]);
+        upper[s..e]
             .iter()
-            .position(|&(_, x)| x == hi)
+            .position(|&x| x == hi)
             .map_or(NONE, |k| (s + k) as u32)
     };
     triangles

@@ -25,7 +25,7 @@ pub(crate) struct Untangler {
     /// Vertex `v`'s entries of `stars` and `incident` are `star_start[v]..star_start[v + 1]`
     /// (compressed rows: the untangler is set up once per composite map, and a list per vertex
     /// was a tenth of that map's set-up, issue 16).
-    star_start: Vec<u32>,
+    star_start: Vec<usize>,
     stars: Vec<[u32; 2]>,
     /// The indices of the triangles (same order as `stars`).
     incident: Vec<u32>,
@@ -47,30 +47,21 @@ impl Untangler {
     /// vertices; `fixed` vertices never move.
     pub(crate) fn new(triangles: &[[u32; 3]], fixed: &[bool]) -> Self {
         let n = fixed.len();
-        // Each vertex's triangles in triangle order, as a list per vertex would hold them.
-        let corners = || {
-            triangles
-                .iter()
-                .enumerate()
-                .flat_map(|(f, t)| (0..3).map(move |k| (t[k], (f as u32, k))))
-        };
-        let mut star_start = vec![0u32; n + 1];
-        for (v, _) in corners() {
-            star_start[v as usize + 1] += 1;
-        }
-        for v in 0..n {
-            star_start[v + 1] += star_start[v];
-        }
-        let mut fill = star_start.clone();
-        let mut stars = vec![[0u32; 2]; 3 * triangles.len()];
-        let mut incident = vec![0u32; 3 * triangles.len()];
-        for (v, (f, k)) in corners() {
-            let t = &triangles[f as usize];
-            let at = fill[v as usize] as usize;
-            stars[at] = [t[(k + 1) % 3], t[(k + 2) % 3]];
-            incident[at] = f;
-            fill[v as usize] += 1;
-        }
+        // Each vertex's corners (3 · triangle + corner) in triangle order, as a list per
+        // vertex would hold them.
+        let corners = triangles
+            .iter()
+            .enumerate()
+            .flat_map(|(f, t)| (0..3).map(move |k| (t[k], (3 * f + k) as u32)));
+        let (star_start, corners) = crate::mesh::compressed_rows(n, corners);
+        let stars = corners
+            .iter()
+            .map(|&c| {
+                let (t, k) = (&triangles[c as usize / 3], c as usize % 3);
+                [t[(k + 1) % 3], t[(k + 2) % 3]]
+            })
+            .collect();
+        let incident = corners.iter().map(|&c| c / 3).collect();
         // The one-rings of `mesh::one_rings`: the sorted edges handed out to both ends in
         // turn, so each ring comes ascending.
         let edges = crate::mesh::edges(triangles);
@@ -88,12 +79,12 @@ impl Untangler {
 
     /// The triangles of `v` as their counter-clockwise opposite edges.
     fn star(&self, v: usize) -> &[[u32; 2]] {
-        &self.stars[self.star_start[v] as usize..self.star_start[v + 1] as usize]
+        &self.stars[self.star_start[v]..self.star_start[v + 1]]
     }
 
     /// The indices of the triangles of `v`, in the order of [`Self::star`].
     fn incident(&self, v: usize) -> &[u32] {
-        &self.incident[self.star_start[v] as usize..self.star_start[v + 1] as usize]
+        &self.incident[self.star_start[v]..self.star_start[v + 1]]
     }
 
     /// The neighbours of `v`, ascending.
