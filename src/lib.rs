@@ -63,6 +63,7 @@ pub mod error;
 pub mod export;
 pub mod frame;
 pub mod geometry;
+mod grid;
 pub mod input;
 pub mod inspect;
 pub mod json;

@@ -10,6 +10,7 @@
 use super::{Item, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::{barycentric, orient2d, point_segment_distance, Point};
+use crate::grid::GridFrame;
 use kurbo::{Affine, BezPath, ParamCurveArclen, PathEl, Shape};
 
 /// Where a point sits in a mesh: a triangle and barycentric coordinates in it (they sum to one;
@@ -38,13 +39,8 @@ impl Location {
 pub struct PointLocator<'a> {
     points: &'a [Point],
     triangles: &'a [[u32; 3]],
-    origin: Point,
-    /// The grid's far corner: the triangles' largest coordinates, or the last cells' far
-    /// sides if they reach further.
-    far: Point,
-    cell: f64,
-    nx: usize,
-    ny: usize,
+    /// The grid over the triangles' box, about one cell per triangle.
+    frame: GridFrame,
     /// Triangle indices per cell (row-major), ascending: cell `k`'s are
     /// `cell_triangles[cell_start[k]..cell_start[k + 1]]` (one allocation for the grid, not one
     /// per cell: a locator is made per part and per binding).
@@ -92,20 +88,12 @@ impl<'a> PointLocator<'a> {
                 "the mesh has no usable triangle to bind the artwork to",
             ));
         }
-        let ext = (hi - lo).max(Point::splat(f64::MIN_POSITIVE));
-        let cell = (ext.x * ext.y / usable.len() as f64)
-            .sqrt()
-            .max(ext.max_element() / 1024.0);
-        let nx = ((ext.x / cell).ceil() as usize).clamp(1, 1024);
-        let ny = ((ext.y / cell).ceil() as usize).clamp(1, 1024);
+        let frame = GridFrame::covering(lo, hi, usable.len());
+        let (nx, ny) = (frame.nx, frame.ny);
         let mut me = PointLocator {
             points,
             triangles,
-            origin: lo,
-            far: hi.max(lo + Point::new(nx as f64, ny as f64) * cell),
-            cell,
-            nx,
-            ny,
+            frame,
             cell_start: Vec::new(),
             cell_triangles: Vec::new(),
         };
@@ -114,8 +102,8 @@ impl<'a> PointLocator<'a> {
             .iter()
             .map(|&i| {
                 let [a, b, c] = triangles[i as usize].map(|v| points[v as usize]);
-                let (x0, y0) = me.cell_of(a.min(b).min(c));
-                let (x1, y1) = me.cell_of(a.max(b).max(c));
+                let (x0, y0) = me.frame.cell_of(a.min(b).min(c));
+                let (x1, y1) = me.frame.cell_of(a.max(b).max(c));
                 [x0, y0, x1, y1]
             })
             .collect();
@@ -148,30 +136,14 @@ impl<'a> PointLocator<'a> {
 
     /// The triangles of grid cell `(x, y)`, ascending.
     fn cell(&self, x: usize, y: usize) -> &[u32] {
-        let k = y * self.nx + x;
+        let k = y * self.frame.nx + x;
         &self.cell_triangles[self.cell_start[k]..self.cell_start[k + 1]]
-    }
-
-    /// The grid cell containing `p`, clamped to the grid.
-    fn cell_of(&self, p: Point) -> (usize, usize) {
-        let q = (p - self.origin) / self.cell;
-        let cx = if q.x.is_finite() {
-            q.x.floor().max(0.0) as usize
-        } else {
-            0
-        };
-        let cy = if q.y.is_finite() {
-            q.y.floor().max(0.0) as usize
-        } else {
-            0
-        };
-        (cx.min(self.nx - 1), cy.min(self.ny - 1))
     }
 
     /// The triangle containing `p` (boundary included; the lowest index wins on shared edges),
     /// with barycentric coordinates clamped to be non-negative.
     pub fn containing(&self, p: Point) -> Option<Location> {
-        let (cx, cy) = self.cell_of(p);
+        let (cx, cy) = self.frame.cell_of(p);
         for &i in self.cell(cx, cy) {
             let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
             let s = orient2d(a, b, c).signum();
@@ -195,7 +167,7 @@ impl<'a> PointLocator<'a> {
 
     /// The triangle nearest to `p` (distance to its closed region; the lowest index wins ties).
     fn nearest(&self, p: Point) -> u32 {
-        let (cx, cy) = self.cell_of(p);
+        let (cx, cy) = self.frame.cell_of(p);
         let mut best: Option<(f64, u32)> = None;
         // A triangle whose bounding box is farther than the best distance by more than the
         // rounding of either distance cannot win, so its distance is not computed. The margin
@@ -203,13 +175,12 @@ impl<'a> PointLocator<'a> {
         // the full scan makes.
         let scale = p
             .abs()
-            .max(self.origin.abs())
-            .max(self.far.abs())
+            .max(self.frame.origin.abs())
+            .max(self.frame.far.abs())
             .max_element();
-        let max_ring = self.nx.max(self.ny);
+        let max_ring = self.frame.nx.max(self.frame.ny);
         for r in 0..=max_ring {
-            let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(self.nx - 1));
-            let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(self.ny - 1));
+            let ((x0, x1), (y0, y1)) = self.frame.ring_square((cx, cy), r);
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
@@ -239,22 +210,7 @@ impl<'a> PointLocator<'a> {
             // sides (the grid's own edges have none): for a point far outside a small grid,
             // that is far more than the gap to the ring's side alone.
             if let Some((d, _)) = best {
-                let (o, c, far) = (self.origin, self.cell, self.far);
-                let (left, right) = (o.x + x0 as f64 * c, o.x + (x1 + 1) as f64 * c);
-                let (low, high) = (o.y + y0 as f64 * c, o.y + (y1 + 1) as f64 * c);
-                let mut beyond = f64::INFINITY;
-                if x0 > 0 {
-                    beyond = beyond.min(box_distance(p, o, Point::new(left, far.y)));
-                }
-                if x1 + 1 < self.nx {
-                    beyond = beyond.min(box_distance(p, Point::new(right, o.y), far));
-                }
-                if y0 > 0 {
-                    beyond = beyond.min(box_distance(p, o, Point::new(far.x, low)));
-                }
-                if y1 + 1 < self.ny {
-                    beyond = beyond.min(box_distance(p, Point::new(o.x, high), far));
-                }
+                let beyond = self.frame.beyond(p, (x0, x1), (y0, y1));
                 if d < beyond || beyond == f64::INFINITY {
                     break;
                 }
@@ -351,13 +307,6 @@ impl<'a> Locator<'a> {
         part.and_then(|k| parts.each[k as usize].as_ref())
             .unwrap_or(&self.whole)
     }
-}
-
-/// The distance from `p` to the box with corners `lo` and `hi` (0 inside it).
-fn box_distance(p: Point, lo: Point, hi: Point) -> f64 {
-    let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
-    let dy = (lo.y - p.y).max(p.y - hi.y).max(0.0);
-    dx.hypot(dy)
 }
 
 /// One subpath of a flattened path: a range of points and whether it is closed.

@@ -15,6 +15,7 @@
 //! source features at 0 and the target features at 1.
 
 use crate::geometry::Point;
+use crate::grid::GridFrame;
 
 /// Fewest boundary vertices carrying one feature vertex.
 const MIN_CARRIERS: usize = 4;
@@ -91,12 +92,8 @@ fn reach(nearest: f64, kth: f64) -> f64 {
 #[derive(Debug)]
 struct Nearby<'a> {
     points: &'a [Point],
-    /// The lower corner of the grid and the side of a cell.
-    origin: Point,
-    cell: f64,
-    /// Cells across and up.
-    nx: usize,
-    ny: usize,
+    /// The grid over the points' box, about one cell per point.
+    frame: GridFrame,
     /// Per cell (row-major), the start of its vertices in `items`; one more entry at the end.
     start: Vec<usize>,
     /// Vertex indices, ascending within each cell.
@@ -105,9 +102,6 @@ struct Nearby<'a> {
     slack: f64,
 }
 
-/// Largest number of cells along one side of a [`Nearby`] grid.
-const MAX_CELLS: usize = 512;
-
 impl<'a> Nearby<'a> {
     /// The grid over `points`; `None` when there are none or one is not finite.
     fn new(points: &'a [Point]) -> Option<Self> {
@@ -115,48 +109,20 @@ impl<'a> Nearby<'a> {
             return None;
         }
         let (lo, hi) = crate::geometry::bounding_box(points.iter().copied())?;
-        let (w, h) = (hi.x - lo.x, hi.y - lo.y);
-        let side = w.max(h);
-        // About one vertex per cell, no more than MAX_CELLS cells along a side.
-        let cell = if side > 0.0 {
-            (w * h / points.len() as f64)
-                .sqrt()
-                .max(side / MAX_CELLS as f64)
-        } else {
-            1.0
-        };
-        let count = |extent: f64| ((extent / cell) as usize + 1).clamp(1, MAX_CELLS);
-        let (nx, ny) = (count(w), count(h));
-        let scale = lo.abs().max(hi.abs()).max_element().max(side);
-        let mut grid = Nearby {
+        let frame = GridFrame::covering(lo, hi, points.len());
+        let cells = points.iter().enumerate().map(|(i, &q)| {
+            let (ix, iy) = frame.cell_of(q);
+            ((iy * frame.nx + ix) as u32, i as u32)
+        });
+        let (start, items) = crate::mesh::compressed_rows(frame.nx * frame.ny, cells);
+        let scale = lo.abs().max(frame.far.abs()).max_element().max(frame.cell);
+        Some(Nearby {
             points,
-            origin: lo,
-            cell,
-            nx,
-            ny,
-            start: Vec::new(),
-            items: Vec::new(),
+            frame,
+            start,
+            items,
             slack: 1e-9 * scale,
-        };
-        let cells: Vec<(u32, u32)> = points
-            .iter()
-            .enumerate()
-            .map(|(i, &q)| {
-                let (ix, iy) = grid.cell_of(q);
-                ((iy * nx + ix) as u32, i as u32)
-            })
-            .collect();
-        (grid.start, grid.items) = crate::mesh::compressed_rows(nx * ny, cells.iter().copied());
-        Some(grid)
-    }
-
-    /// The cell of `q`, clamped into the grid.
-    fn cell_of(&self, q: Point) -> (usize, usize) {
-        let index = |v: f64, o: f64, n: usize| (((v - o) / self.cell).max(0.0) as usize).min(n - 1);
-        (
-            index(q.x, self.origin.x, self.nx),
-            index(q.y, self.origin.y, self.ny),
-        )
+        })
     }
 
     /// Calls `visit` with `(distance², index)` of every vertex in cells `x0..=x1` × `y0..=y1`.
@@ -168,7 +134,7 @@ impl<'a> Nearby<'a> {
         mut visit: impl FnMut(f64, u32),
     ) {
         for iy in y0..=y1 {
-            let row = iy * self.nx;
+            let row = iy * self.frame.nx;
             let (s, e) = (self.start[row + x0], self.start[row + x1 + 1]);
             for &i in &self.items[s..e] {
                 visit(self.points[i as usize].distance_squared(p), i);
@@ -192,48 +158,33 @@ impl<'a> Nearby<'a> {
                 best[j] = d2;
             }
         };
-        let (cx, cy) = self.cell_of(p);
-        let (o, c) = (self.origin, self.cell);
+        let (cx, cy) = self.frame.cell_of(p);
+        let (nx, ny) = (self.frame.nx, self.frame.ny);
         for r in 0.. {
-            let (x0, x1) = (cx.saturating_sub(r), (cx + r).min(self.nx - 1));
-            let (y0, y1) = (cy.saturating_sub(r), (cy + r).min(self.ny - 1));
+            let ((x0, x1), (y0, y1)) = self.frame.ring_square((cx, cy), r);
             // The ring at Chebyshev distance r: its bottom and top rows, then its side columns.
             if cy >= r {
                 self.scan(p, (x0, x1), (cy - r, cy - r), |d2, _| keep(&mut best, d2));
             }
-            if r > 0 && cy + r < self.ny {
+            if r > 0 && cy + r < ny {
                 self.scan(p, (x0, x1), (cy + r, cy + r), |d2, _| keep(&mut best, d2));
             }
             if r > 0 {
                 // The rows strictly between the ring's bottom and top.
-                let inner = ((cy + 1).saturating_sub(r), (cy + r - 1).min(self.ny - 1));
+                let inner = ((cy + 1).saturating_sub(r), (cy + r - 1).min(ny - 1));
                 if cx >= r {
                     self.scan(p, (cx - r, cx - r), inner, |d2, _| keep(&mut best, d2));
                 }
-                if cx + r < self.nx {
+                if cx + r < nx {
                     self.scan(p, (cx + r, cx + r), inner, |d2, _| keep(&mut best, d2));
                 }
             }
-            let (left, right) = (x0 > 0, x1 + 1 < self.nx);
-            let (below, above) = (y0 > 0, y1 + 1 < self.ny);
-            if !(left || right || below || above) {
+            // Every vertex not yet seen lies in a cell beyond the square.
+            let beyond = self.frame.beyond(p, (x0, x1), (y0, y1));
+            if beyond == f64::INFINITY {
                 break;
             }
-            // Every vertex not yet seen lies beyond one of the square's open sides.
-            let mut bound = f64::INFINITY;
-            if left {
-                bound = bound.min(p.x - (o.x + x0 as f64 * c));
-            }
-            if right {
-                bound = bound.min(o.x + (x1 + 1) as f64 * c - p.x);
-            }
-            if below {
-                bound = bound.min(p.y - (o.y + y0 as f64 * c));
-            }
-            if above {
-                bound = bound.min(o.y + (y1 + 1) as f64 * c - p.y);
-            }
-            let bound = bound - self.slack;
+            let bound = beyond - self.slack;
             if bound > 0.0 && best[k - 1] < bound * bound {
                 break;
             }
@@ -242,12 +193,13 @@ impl<'a> Nearby<'a> {
         // Every vertex within the radius, from the cells its disc meets (one more cell each
         // way for rounding in the cell assignment).
         let radius = r2.sqrt() + self.slack;
+        let (o, c) = (self.frame.origin, self.frame.cell);
         let span = |v: f64, o: f64, n: usize| {
             let a = ((v - radius - o) / c).floor() - 1.0;
             let b = ((v + radius - o) / c).floor() + 1.0;
             (a.max(0.0) as usize).min(n - 1)..=(b.max(0.0) as usize).min(n - 1)
         };
-        let (xs, ys) = (span(p.x, o.x, self.nx), span(p.y, o.y, self.ny));
+        let (xs, ys) = (span(p.x, o.x, self.frame.nx), span(p.y, o.y, self.frame.ny));
         let mut kept = Vec::new();
         self.scan(
             p,
