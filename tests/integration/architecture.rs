@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 const LAYERS: &[&str] = &[
     "error",
     "geometry",
+    "grid",
     "tolerance",
     "base64",
     "number",
