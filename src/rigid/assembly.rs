@@ -24,6 +24,7 @@
 //! shape up to a translation and the centroid rule removes the translation.
 
 use super::factor::{Factor, Row, MAX_LANES};
+use super::simd::vectorized;
 use crate::error::Result;
 use crate::geometry::Point;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -364,7 +365,11 @@ impl FactoredSystem {
         if let Some(f) = &self.factor {
             f.solve_in_place(&mut s.rhs);
         }
-        self.place(&mut s.rhs, 0, &mut s.sums, centroids, out);
+        let (rhs, sums) = (&mut s.rhs, &mut s.sums);
+        vectorized(
+            #[inline(always)]
+            || self.place(rhs, 0, sums, centroids, out),
+        );
     }
 
     /// The rows of a batch of `K ≤` [`MAX_LANES`] right-hand sides, one per frame, with lanes
@@ -397,12 +402,17 @@ impl FactoredSystem {
         centroids: &[Point],
         out: &mut [Point],
     ) {
-        self.place(&mut s.lanes, lane, &mut s.sums, centroids, out);
+        let (lanes, sums) = (&mut s.lanes, &mut s.sums);
+        vectorized(
+            #[inline(always)]
+            || self.place(lanes, lane, sums, centroids, out),
+        );
     }
 
     /// Writes lane `lane` of the solved `rows` into `out`, every vertex, translating each free
     /// component so its vertex centroid is `centroids[component]` (module docs); `sums` is
-    /// scratch, one per component.
+    /// scratch, one per component. Inlined into [`vectorized`]'s copies (`simd.rs`).
+    #[inline(always)]
     fn place<R: Row>(
         &self,
         rows: &mut [R],

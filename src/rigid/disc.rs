@@ -41,6 +41,7 @@ use super::assembly::{
 };
 use super::factor::{Row, MAX_LANES};
 use super::rotation::{consistent_angles_in_cliques, Cliques};
+use super::simd::vectorized;
 use super::sincos::sin_cos_many;
 use super::Repair;
 use crate::error::{Error, Result};
@@ -612,7 +613,11 @@ impl DiscRigid {
         repair: Repair,
     ) {
         ws.solve.rhs.fill(Point::ZERO);
-        self.assemble([t], [targets], adjust.map(|a| [a]), &mut ws.solve.rhs);
+        let rhs = &mut ws.solve.rhs;
+        vectorized(
+            #[inline(always)]
+            || self.assemble([t], [targets], adjust.map(|a| [a]), rhs),
+        );
         self.centroids_at(t, ws);
         self.system.solve(&mut ws.solve, &ws.centroids, out);
         self.finish(t, out, ws, repair);
@@ -694,7 +699,10 @@ impl DiscRigid {
         let adjust: Option<[&[Point]; K]> = (lanes.points > 0)
             .then(|| std::array::from_fn(|k| lanes.adjust(k).unwrap_or_default()));
         let rows = self.system.lanes::<K>(&mut ws.solve);
-        self.assemble(ts, targets, adjust, rows);
+        vectorized(
+            #[inline(always)]
+            || self.assemble(ts, targets, adjust, rows),
+        );
         self.system.solve_lanes::<K>(&mut ws.solve);
         for (lane, (&t, out)) in ts
             .iter()
@@ -712,7 +720,8 @@ impl DiscRigid {
     /// factor's rows, zero on entry): every edge's rotated, scaled difference, adjusted as
     /// [`DiscRigid::at_adjusted`] says (lane `k` by `adjust[k]`), and the extra rows' targets
     /// (lane `k`'s `targets[k]`). Each lane takes the operations of a lone frame in the same
-    /// order, so it has its bits.
+    /// order, so it has its bits. Inlined into [`vectorized`]'s copies (`simd.rs`).
+    #[inline(always)]
     fn assemble<const K: usize, R: Row>(
         &self,
         ts: [f64; K],
@@ -748,7 +757,10 @@ impl DiscRigid {
                     // registers while the run lasts.
                     let (mut row, mut sum) = (u32::MAX, [Point::ZERO; K]);
                     for (i, e) in terms.iter().enumerate() {
-                        let l: [Point; K] = std::array::from_fn(|k| rotated(i, k));
+                        let mut l = [Point::ZERO; K];
+                        for (k, l) in l.iter_mut().enumerate() {
+                            *l = rotated(i, k);
+                        }
                         let rj = &mut rhs[e.rj as usize];
                         for (k, &l) in l.iter().enumerate() {
                             *rj.lane_mut(k) += l;

@@ -125,6 +125,16 @@ impl Factor {
     /// alone). One pass over `L` serves every lane, so the frames share its memory traffic;
     /// each lane takes exactly the operations of a lone solve, so its result has the same bits.
     pub(super) fn solve_rows<const K: usize, R: Row>(&self, b: &mut [R]) {
+        super::simd::vectorized(
+            #[inline(always)]
+            || self.substitute::<K, R>(b),
+        )
+    }
+
+    /// [`Factor::solve_rows`]'s two substitutions, inlined into each instruction set's copy
+    /// (`simd.rs`).
+    #[inline(always)]
+    fn substitute<const K: usize, R: Row>(&self, b: &mut [R]) {
         let n = self.inv_diag.len();
         let b = &mut b[..n];
         // L y = b, column by column.
@@ -193,7 +203,7 @@ pub(crate) const MAX_LANES: usize = 8;
 
 /// `Σ_k values[k] · b[index[k]]` for each of the first `K` lanes, in four partial sums per
 /// lane: one running sum would wait on every addition.
-#[inline]
+#[inline(always)]
 fn dot<const K: usize, R: Row>(index: &[u32], values: &[f64], b: &[R]) -> [Point; K] {
     let mut acc = [[Point::ZERO; K]; 4];
     for (r, v) in index.chunks_exact(4).zip(values.chunks_exact(4)) {
@@ -330,6 +340,46 @@ mod tests {
                 }
             }
             assert!(b.iter().all(|row| row[K..].iter().all(|&p| p == marker)));
+        }
+    }
+
+    /// The solve compiled for wide instructions has the bits of plain code (`simd.rs`), one
+    /// lane or eight.
+    #[test]
+    fn wide_instructions_keep_the_bits_of_plain_code() {
+        let bits = |v: &[Point]| -> Vec<(u64, u64)> {
+            v.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
+        };
+        for (dense, a) in test_systems() {
+            let n = dense.len();
+            let f = Factor::new(a.as_ref()).unwrap();
+            let rhs = |k: usize| -> Vec<Point> {
+                (0..n)
+                    .map(|i| {
+                        Point::new(
+                            ((i * 7 + k) % 13) as f64 / 3.0 - 2.0,
+                            ((i + k) as f64).cos(),
+                        )
+                    })
+                    .collect()
+            };
+            for k in [0, 5] {
+                let mut wide = rhs(k);
+                f.solve_in_place(&mut wide);
+                let mut plain = rhs(k);
+                crate::rigid::simd::scalar(|| f.solve_in_place(&mut plain));
+                assert!(bits(&wide) == bits(&plain), "{n} rows, rhs {k}");
+            }
+            let batch = || -> Vec<[Point; MAX_LANES]> {
+                (0..n).map(|i| std::array::from_fn(|k| rhs(k)[i])).collect()
+            };
+            let (mut wide, mut plain) = (batch(), batch());
+            f.solve_rows::<MAX_LANES, _>(&mut wide);
+            crate::rigid::simd::scalar(|| f.solve_rows::<MAX_LANES, _>(&mut plain));
+            assert!(
+                bits(&wide.concat()) == bits(&plain.concat()),
+                "{n} rows, eight lanes"
+            );
         }
     }
 

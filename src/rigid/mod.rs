@@ -23,6 +23,7 @@ mod factor;
 mod linear;
 pub(crate) mod repair;
 mod rotation;
+mod simd;
 mod sincos;
 mod triangle;
 

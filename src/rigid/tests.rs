@@ -273,6 +273,72 @@ fn frames_solved_together_have_the_bits_of_lone_frames() {
     }
 }
 
+/// Frames computed with the kernels compiled for wide instructions (`simd.rs`) have the bits
+/// of plain code: lone frames, batches of every length, with the fold repair, and with eq. (2)'s
+/// per-frame targets and per-vertex adjustments (the skeleton's path).
+#[test]
+fn wide_instructions_give_the_bits_of_plain_code() {
+    use super::disc::{DiscRigid, ExtraRow};
+    if !super::simd::widens() {
+        eprintln!(
+            "note: this processor has no wider instructions; plain code is compared with itself"
+        );
+    }
+    let bits = |f: &[Point]| -> Vec<(u64, u64)> {
+        f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
+    };
+    let (src, tris, _) = two_parts(grid(9, 8, 1.0), grid(6, 6, 0.7));
+    let tgt = bend(&src, 9.0, 1.4, 2.5);
+    let on_curve: Vec<bool> = (0..src.len()).map(|v| v % 5 == 0).collect();
+    let it = Interpolator::disc(
+        &src,
+        &tgt,
+        &DiscSetup {
+            triangles: &tris,
+            repair: Some((&tris, &on_curve)),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let n = it.vertex_count();
+    for len in [1, 3, 8, 11] {
+        let ts: Vec<f64> = (0..len).map(|k| (k as f64 + 0.3) / len as f64).collect();
+        let run = || {
+            let mut ws = it.workspace();
+            let mut many = vec![Point::ZERO; len * n];
+            it.at_many(&ts, &mut many, &mut ws);
+            let mut lone = vec![Point::ZERO; n];
+            it.at(ts[len / 2], &mut lone, &mut ws);
+            (many, lone)
+        };
+        let (wide, plain) = (run(), super::simd::scalar(run));
+        assert!(bits(&wide.0) == bits(&plain.0), "{len} frames together");
+        assert!(bits(&wide.1) == bits(&plain.1), "a lone frame");
+    }
+    // Eq. (2): an extra row and per-vertex adjustments, frame by frame.
+    let discs = crate::mesh::one_rings(&tris, src.len());
+    let row = ExtraRow {
+        coeffs: vec![(0, 0.5), (1, 0.5)],
+        weight: 2.0,
+    };
+    let d = DiscRigid::with_extra_rows(&src, &tgt, &discs, vec![row]).unwrap();
+    let ts = [0.1, 0.4, 0.45, 0.9];
+    let targets: Vec<Point> = ts.iter().map(|&t| Point::new(t, 1.0 - t)).collect();
+    let adjust: Vec<Point> = (0..ts.len() * src.len())
+        .map(|k| Point::from_angle(k as f64 * 0.01) * (1.0 + (k % 7) as f64 * 0.02))
+        .collect();
+    let run = || {
+        let mut ws = d.scratch();
+        let mut out = vec![Point::ZERO; ts.len() * src.len()];
+        d.at_many_adjusted(&ts, &targets, &adjust, &mut out, &mut ws, Repair::AsSetUp);
+        out
+    };
+    assert!(
+        bits(&run()) == bits(&super::simd::scalar(run)),
+        "adjusted frames"
+    );
+}
+
 #[test]
 fn times_outside_the_morph_hold_its_ends() {
     // One rule for every method (`clamp_time`): before 0 the source, after 1 the target,
