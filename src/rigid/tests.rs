@@ -184,6 +184,30 @@ fn one_interpolator_read_three_ways_gives_the_frames_of_three() {
     );
 }
 
+/// The bits of every coordinate, for comparisons that must be exact.
+fn bits(f: &[Point]) -> Vec<(u64, u64)> {
+    f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
+}
+
+/// The disc method with the fold repair of the vertices not flagged in `on_curve`.
+fn disc_with_repair(
+    src: &[Point],
+    tgt: &[Point],
+    tris: &[[u32; 3]],
+    on_curve: &[bool],
+) -> Interpolator {
+    Interpolator::disc(
+        src,
+        tgt,
+        &DiscSetup {
+            triangles: tris,
+            repair: Some((tris, on_curve)),
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
+
 /// Two meshes side by side, the second moved 10 to the right, as one: points, triangles and
 /// the first index of the second part.
 fn two_parts(
@@ -206,9 +230,6 @@ fn two_parts(
 fn frames_solved_together_have_the_bits_of_lone_frames() {
     // `frames` solves up to eight frames in one pass over the factor, in batches spread over
     // rayon's threads when the work is large; each frame must keep the bits of `at`.
-    let bits = |f: &[Point]| -> Vec<(u64, u64)> {
-        f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
-    };
     // A folding grid with the fold repair and two separate parts: small, on one thread.
     let (src, tris, n) = two_parts(grid(7, 7, 1.0), grid(7, 7, 1.0));
     let mut tgt: Vec<Point> = src
@@ -224,16 +245,7 @@ fn frames_solved_together_have_the_bits_of_lone_frames() {
         .collect();
     tgt[2 * 7 + 2] = rot(Point::new(4.6, 3.7), 2.0);
     let on_curve = vec![false; src.len()];
-    let small = Interpolator::disc(
-        &src,
-        &tgt,
-        &DiscSetup {
-            triangles: &tris,
-            repair: Some((&tris, &on_curve)),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let small = disc_with_repair(&src, &tgt, &tris, &on_curve);
     // A large bent grid: its frames go to rayon's threads.
     let (big_src, big_tris) = grid(60, 60, 1.0);
     let big = Interpolator::new(
@@ -284,22 +296,10 @@ fn wide_instructions_give_the_bits_of_plain_code() {
             "note: this processor has no wider instructions; plain code is compared with itself"
         );
     }
-    let bits = |f: &[Point]| -> Vec<(u64, u64)> {
-        f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
-    };
     let (src, tris, _) = two_parts(grid(9, 8, 1.0), grid(6, 6, 0.7));
     let tgt = bend(&src, 9.0, 1.4, 2.5);
     let on_curve: Vec<bool> = (0..src.len()).map(|v| v % 5 == 0).collect();
-    let it = Interpolator::disc(
-        &src,
-        &tgt,
-        &DiscSetup {
-            triangles: &tris,
-            repair: Some((&tris, &on_curve)),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let it = disc_with_repair(&src, &tgt, &tris, &on_curve);
     let n = it.vertex_count();
     for len in [1, 3, 8, 11] {
         let ts: Vec<f64> = (0..len).map(|k| (k as f64 + 0.3) / len as f64).collect();
