@@ -325,7 +325,7 @@ struct PartGroup {
 }
 
 /// The extra-row targets and adjustments of a batch's frames, laid end to end (either empty
-/// for none), as [`DiscRigid::at_many_adjusted`] takes them: `rows` targets and `points`
+/// for none), as [`DiscRigid::frames_into`] takes them: `rows` targets and `points`
 /// adjustments per frame.
 struct Lanes<'a> {
     targets: &'a [Point],
@@ -623,35 +623,24 @@ impl DiscRigid {
         self.finish(t, out, ws, repair);
     }
 
-    /// Frames at every `t` of `ts` into `out`, laid end to end (fold repair as `repair`
-    /// says), the same bits as one [`DiscRigid::at_adjusted`] call each: up to [`MAX_LANES`]
-    /// frames share each pass over the factor, which at large meshes is most of a frame's
-    /// cost, and each pass over the terms.
-    pub(crate) fn at_many(
-        &self,
-        ts: &[f64],
-        out: &mut [Point],
-        ws: &mut FrameScratch,
-        repair: Repair,
-    ) {
-        self.at_many_adjusted(ts, &[], &[], out, ws, repair);
-    }
-
-    /// [`DiscRigid::at_many`] with each frame's extra-row targets and adjustments, as
-    /// [`DiscRigid::at_adjusted`] takes them for one frame: frame `k`'s are
-    /// `targets[k·r..(k + 1)·r]` for `r` extra rows and `adjust[k·n..(k + 1)·n]` for `n` points
-    /// (either empty for none). Each frame has the bits of its lone `at_adjusted` call.
-    pub(crate) fn at_many_adjusted(
+    /// Frames at every `t` of `ts` (fold repair as `repair` says), the same bits as one
+    /// [`DiscRigid::at_adjusted`] call each: up to [`MAX_LANES`] frames share each pass over
+    /// the factor, which at large meshes is most of a frame's cost, and each pass over the
+    /// terms. Each frame's extra-row targets and adjustments are as `at_adjusted` takes them
+    /// for one frame: frame `k`'s are `targets[k·r..(k + 1)·r]` for `r` extra rows and
+    /// `adjust[k·n..(k + 1)·n]` for `n` points (either empty for none). Frame `k` goes to the
+    /// `k`-th slice of `outs`, `n` points each: a flat buffer's chunks, or the caller's own
+    /// vectors, so nothing is copied.
+    pub(crate) fn frames_into<'o>(
         &self,
         ts: &[f64],
         targets: &[Point],
         adjust: &[Point],
-        out: &mut [Point],
+        mut outs: impl Iterator<Item = &'o mut [Point]>,
         ws: &mut FrameScratch,
         repair: Repair,
     ) {
         let n = self.vertex_count();
-        debug_assert_eq!(out.len(), ts.len() * n);
         debug_assert!(targets.len() % ts.len().max(1) == 0);
         debug_assert!(adjust.is_empty() || adjust.len() == ts.len() * n);
         if n == 0 {
@@ -659,11 +648,7 @@ impl DiscRigid {
         }
         let frames = ts.len().max(1);
         let (rows, points) = (targets.len() / frames, adjust.len() / frames);
-        for (b, (ts, out)) in ts
-            .chunks(MAX_LANES)
-            .zip(out.chunks_mut(MAX_LANES * n))
-            .enumerate()
-        {
+        for (b, ts) in ts.chunks(MAX_LANES).enumerate() {
             let (first, end) = (b * MAX_LANES, b * MAX_LANES + ts.len());
             let lanes = Lanes {
                 targets: &targets[first * rows..end * rows],
@@ -671,26 +656,31 @@ impl DiscRigid {
                 rows,
                 points,
             };
+            let outs = &mut outs;
             match ts.len() {
-                1 => self.at_adjusted(ts[0], lanes.targets(0), lanes.adjust(0), out, ws, repair),
-                2 => self.batch::<2>(ts, &lanes, out, ws, repair),
-                3 => self.batch::<3>(ts, &lanes, out, ws, repair),
-                4 => self.batch::<4>(ts, &lanes, out, ws, repair),
-                5 => self.batch::<5>(ts, &lanes, out, ws, repair),
-                6 => self.batch::<6>(ts, &lanes, out, ws, repair),
-                7 => self.batch::<7>(ts, &lanes, out, ws, repair),
-                _ => self.batch::<MAX_LANES>(ts, &lanes, out, ws, repair),
+                1 => {
+                    if let Some(out) = outs.next() {
+                        self.at_adjusted(ts[0], lanes.targets(0), lanes.adjust(0), out, ws, repair)
+                    }
+                }
+                2 => self.batch::<2>(ts, &lanes, outs, ws, repair),
+                3 => self.batch::<3>(ts, &lanes, outs, ws, repair),
+                4 => self.batch::<4>(ts, &lanes, outs, ws, repair),
+                5 => self.batch::<5>(ts, &lanes, outs, ws, repair),
+                6 => self.batch::<6>(ts, &lanes, outs, ws, repair),
+                7 => self.batch::<7>(ts, &lanes, outs, ws, repair),
+                _ => self.batch::<MAX_LANES>(ts, &lanes, outs, ws, repair),
             }
         }
     }
 
     /// The `K` frames at `ts` (`ts.len() == K`) as one batch: their right-hand sides in the
     /// lanes of one buffer, one solve, then each frame placed, repaired and area-corrected.
-    fn batch<const K: usize>(
+    fn batch<'o, const K: usize>(
         &self,
         ts: &[f64],
         lanes: &Lanes<'_>,
-        out: &mut [Point],
+        outs: &mut impl Iterator<Item = &'o mut [Point]>,
         ws: &mut FrameScratch,
         repair: Repair,
     ) {
@@ -704,11 +694,7 @@ impl DiscRigid {
             || self.assemble(ts, targets, adjust, rows),
         );
         self.system.solve_lanes::<K>(&mut ws.solve);
-        for (lane, (&t, out)) in ts
-            .iter()
-            .zip(out.chunks_mut(self.vertex_count()))
-            .enumerate()
-        {
+        for (lane, (&t, out)) in ts.iter().zip(outs).enumerate() {
             self.centroids_at(t, ws);
             self.system
                 .place_lane(&mut ws.solve, lane, &ws.centroids, out);

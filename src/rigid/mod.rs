@@ -354,6 +354,24 @@ impl Interpolator {
             ts.len().saturating_mul(self.n),
             "output buffer length must equal ts.len() · vertex_count()"
         );
+        if self.n > 0 {
+            self.many_into(ts, out.chunks_mut(self.n), ws, repair);
+        }
+    }
+
+    /// The frames at `ts` into `outs`, one slice of [`Interpolator::vertex_count`] points per
+    /// time (a flat buffer's chunks, or the vectors [`Interpolator::frames`] returns, so that
+    /// nothing is copied), with the disc method's fold repair as `repair` says.
+    fn many_into<'o>(
+        &self,
+        ts: &[f64],
+        mut outs: impl Iterator<Item = &'o mut [Point]>,
+        ws: &mut Workspace,
+        repair: Repair,
+    ) {
+        if self.n == 0 {
+            return;
+        }
         match &self.kind {
             Kind::Disc(d) => {
                 if ws.owner != self.id {
@@ -361,16 +379,16 @@ impl Interpolator {
                 }
                 let scratch = ws.scratch.get_or_insert_with(|| d.scratch());
                 let mut clamped = [0.0; MAX_LANES];
-                let per_batch = MAX_LANES * self.n.max(1);
-                for (ts, out) in ts.chunks(MAX_LANES).zip(out.chunks_mut(per_batch)) {
+                for ts in ts.chunks(MAX_LANES) {
                     for (c, &t) in clamped.iter_mut().zip(ts) {
                         *c = clamp_time(t);
                     }
-                    d.at_many(&clamped[..ts.len()], out, scratch, repair);
+                    let (ts, outs) = (&clamped[..ts.len()], outs.by_ref());
+                    d.frames_into(ts, &[], &[], outs, scratch, repair);
                 }
             }
             Kind::Triangle(..) | Kind::Linear(..) => {
-                for (&t, out) in ts.iter().zip(out.chunks_mut(self.n.max(1))) {
+                for (&t, out) in ts.iter().zip(outs) {
                     self.at_repairing(t, out, ws, repair);
                 }
             }
@@ -391,7 +409,10 @@ impl Interpolator {
             ts,
             self.n,
             || self.workspace(),
-            |ts, out, ws| self.many_repairing(ts, out, ws, Repair::AsSetUp),
+            |ts, frames, ws| {
+                let outs = frames.iter_mut().map(Vec::as_mut_slice);
+                self.many_into(ts, outs, ws, Repair::AsSetUp)
+            },
         )
     }
 
@@ -404,7 +425,10 @@ impl Interpolator {
             ts,
             self.n,
             || self.workspace(),
-            |ts, out, ws| self.many_repairing(ts, out, ws, repair),
+            |ts, frames, ws| {
+                let outs = frames.iter_mut().map(Vec::as_mut_slice);
+                self.many_into(ts, outs, ws, repair)
+            },
         )
     }
 
@@ -423,25 +447,24 @@ impl Interpolator {
 
 /// Frames at every `t` of `ts`, in parallel when there is enough work
 /// ([`crate::parallel`]), each worker with its own workspace from `workspace`:
-/// `at_many(ts, out, ws)` fills the frames of a batch of up to [`MAX_LANES`] times, `n` points
-/// each, laid end to end in `out`, so that a motion can share one pass over its factor among
-/// them. Shared by every precompute-then-apply motion (the interpolator, skeleton control).
+/// `at_many(ts, frames, ws)` fills the frames of a batch of up to [`MAX_LANES`] times, one
+/// vector of `n` points each (the vectors returned, so nothing is copied), so that a motion
+/// can share one pass over its factor among them. Shared by every precompute-then-apply
+/// motion (the interpolator, skeleton control).
 pub(crate) fn parallel_frames<W>(
     ts: &[f64],
     n: usize,
     workspace: impl Fn() -> W + Sync + Send,
-    at_many: impl Fn(&[f64], &mut [Point], &mut W) + Sync + Send,
+    at_many: impl Fn(&[f64], &mut [Vec<Point>], &mut W) + Sync + Send,
 ) -> Vec<Vec<Point>> {
     let work = ts.len().saturating_mul(n);
     let per_batch = crate::parallel::batch_len(ts.len(), work, MAX_LANES);
     let batches: Vec<&[f64]> = ts.chunks(per_batch).collect();
     crate::parallel::map_init(&batches, work, workspace, |ws, ts| {
-        let mut out = vec![Point::ZERO; ts.len() * n];
-        at_many(ts, &mut out, ws);
-        if n == 0 {
-            return vec![Vec::new(); ts.len()];
-        }
-        out.chunks(n).map(<[Point]>::to_vec).collect::<Vec<_>>()
+        // Each frame solved straight into the vector returned for it.
+        let mut frames = vec![vec![Point::ZERO; n]; ts.len()];
+        at_many(ts, &mut frames, ws);
+        frames
     })
     .into_iter()
     .flatten()

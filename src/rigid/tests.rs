@@ -330,7 +330,14 @@ fn wide_instructions_give_the_bits_of_plain_code() {
     let run = || {
         let mut ws = d.scratch();
         let mut out = vec![Point::ZERO; ts.len() * src.len()];
-        d.at_many_adjusted(&ts, &targets, &adjust, &mut out, &mut ws, Repair::AsSetUp);
+        d.frames_into(
+            &ts,
+            &targets,
+            &adjust,
+            out.chunks_mut(src.len()),
+            &mut ws,
+            Repair::AsSetUp,
+        );
         out
     };
     assert!(

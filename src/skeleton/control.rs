@@ -320,17 +320,19 @@ impl SkeletonControl {
             ts,
             self.n,
             || self.workspace(),
-            |ts, out, ws| self.at_many(ts, out, ws),
+            |ts, frames, ws| self.frames_into(ts, frames, ws),
         )
     }
 
-    /// The meshes at every `t` of `ts` into `out`, laid end to end: each frame's desired
-    /// skeleton and bone transformations, then eq. (2) solved for the frames together
-    /// (`DiscRigid::at_many_adjusted`).
-    fn at_many(&self, ts: &[f64], out: &mut [Point], ws: &mut ControlWorkspace) {
+    /// The meshes at every `t` of `ts` into `frames` (one vector of the mesh's length per
+    /// time): each frame's desired skeleton and bone transformations, then eq. (2) solved for
+    /// the frames together (`DiscRigid::frames_into`).
+    fn frames_into(&self, ts: &[f64], frames: &mut [Vec<Point>], ws: &mut ControlWorkspace) {
         let ts: Vec<f64> = ts.iter().map(|&t| crate::rigid::clamp_time(t)).collect();
+        let outs = frames.iter_mut().map(Vec::as_mut_slice);
         let (Some(c), Some(cws)) = (&self.control, ws.constrained.as_mut()) else {
-            self.plain.at_many(&ts, out, &mut ws.plain, Repair::AsSetUp);
+            self.plain
+                .frames_into(&ts, &[], &[], outs, &mut ws.plain, Repair::AsSetUp);
             return;
         };
         let mut targets = Vec::new();
@@ -339,6 +341,6 @@ impl SkeletonControl {
             targets.extend(self.bone_adjustments(c, t, &mut ws.bone, adjust));
         }
         c.constrained
-            .at_many_adjusted(&ts, &targets, &adjust, out, cws, Repair::AsSetUp);
+            .frames_into(&ts, &targets, &adjust, outs, cws, Repair::AsSetUp);
     }
 }
