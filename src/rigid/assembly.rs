@@ -365,11 +365,7 @@ impl FactoredSystem {
         if let Some(f) = &self.factor {
             f.solve_in_place(&mut s.rhs);
         }
-        let (rhs, sums) = (&mut s.rhs, &mut s.sums);
-        vectorized(
-            #[inline(always)]
-            || self.place(rhs, 0, sums, centroids, out),
-        );
+        self.place(&mut s.rhs, 0, &mut s.sums, centroids, out);
     }
 
     /// The rows of a batch of `K ≤` [`MAX_LANES`] right-hand sides, one per frame, with lanes
@@ -402,18 +398,29 @@ impl FactoredSystem {
         centroids: &[Point],
         out: &mut [Point],
     ) {
-        let (lanes, sums) = (&mut s.lanes, &mut s.sums);
-        vectorized(
-            #[inline(always)]
-            || self.place(lanes, lane, sums, centroids, out),
-        );
+        self.place(&mut s.lanes, lane, &mut s.sums, centroids, out);
     }
 
     /// Writes lane `lane` of the solved `rows` into `out`, every vertex, translating each free
     /// component so its vertex centroid is `centroids[component]` (module docs); `sums` is
-    /// scratch, one per component. Inlined into [`vectorized`]'s copies (`simd.rs`).
-    #[inline(always)]
+    /// scratch, one per component. Runs in the widest instructions at hand (`simd.rs`).
     fn place<R: Row>(
+        &self,
+        rows: &mut [R],
+        lane: usize,
+        sums: &mut [Point],
+        centroids: &[Point],
+        out: &mut [Point],
+    ) {
+        vectorized(
+            #[inline(always)]
+            || self.place_kernel(rows, lane, sums, centroids, out),
+        )
+    }
+
+    /// [`FactoredSystem::place`]'s loops, inlined into each instruction set's copy.
+    #[inline(always)]
+    fn place_kernel<R: Row>(
         &self,
         rows: &mut [R],
         lane: usize,

@@ -613,11 +613,7 @@ impl DiscRigid {
         repair: Repair,
     ) {
         ws.solve.rhs.fill(Point::ZERO);
-        let rhs = &mut ws.solve.rhs;
-        vectorized(
-            #[inline(always)]
-            || self.assemble([t], [targets], adjust.map(|a| [a]), rhs),
-        );
+        self.assemble([t], [targets], adjust.map(|a| [a]), &mut ws.solve.rhs);
         self.centroids_at(t, ws);
         self.system.solve(&mut ws.solve, &ws.centroids, out);
         self.finish(t, out, ws, repair);
@@ -689,10 +685,7 @@ impl DiscRigid {
         let adjust: Option<[&[Point]; K]> = (lanes.points > 0)
             .then(|| std::array::from_fn(|k| lanes.adjust(k).unwrap_or_default()));
         let rows = self.system.lanes::<K>(&mut ws.solve);
-        vectorized(
-            #[inline(always)]
-            || self.assemble(ts, targets, adjust, rows),
-        );
+        self.assemble(ts, targets, adjust, rows);
         self.system.solve_lanes::<K>(&mut ws.solve);
         for (lane, (&t, out)) in ts.iter().zip(outs).enumerate() {
             self.centroids_at(t, ws);
@@ -706,9 +699,23 @@ impl DiscRigid {
     /// factor's rows, zero on entry): every edge's rotated, scaled difference, adjusted as
     /// [`DiscRigid::at_adjusted`] says (lane `k` by `adjust[k]`), and the extra rows' targets
     /// (lane `k`'s `targets[k]`). Each lane takes the operations of a lone frame in the same
-    /// order, so it has its bits. Inlined into [`vectorized`]'s copies (`simd.rs`).
-    #[inline(always)]
+    /// order, so it has its bits. Runs in the widest instructions at hand (`simd.rs`).
     fn assemble<const K: usize, R: Row>(
+        &self,
+        ts: [f64; K],
+        targets: [&[Point]; K],
+        adjust: Option<[&[Point]; K]>,
+        rhs: &mut [R],
+    ) {
+        vectorized(
+            #[inline(always)]
+            || self.assemble_kernel(ts, targets, adjust, rhs),
+        )
+    }
+
+    /// [`DiscRigid::assemble`]'s loops, inlined into each instruction set's copy.
+    #[inline(always)]
+    fn assemble_kernel<const K: usize, R: Row>(
         &self,
         ts: [f64; K],
         targets: [&[Point]; K],
