@@ -47,13 +47,23 @@ pub(crate) fn crossing_curves(curves: &[CurveRef<'_>]) -> Vec<(usize, usize)> {
 /// Whether any two curve edges cross or touch (as in [`first_crossing`]): the composite
 /// mapping's test of every step's intermediate curves. It tests the grid's candidate pairs as
 /// they come, stopping at the first hit, without collecting and sorting them (a pair shared by
-/// two cells is tested twice, which cannot change the answer).
+/// two cells is tested twice, which cannot change the answer). Plain loops over each cell's
+/// pairs, not [`EdgeGrid::candidates`]: its nested iterators cost as much as the tests.
 pub(crate) fn curves_cross(curves: &[CurveRef<'_>]) -> bool {
     let Some(grid) = EdgeGrid::new(curves) else {
         return false;
     };
-    let crossed = grid.candidates().any(|(s1, s2)| grid.hit(curves, s1, s2));
-    crossed
+    for w in grid.start.windows(2) {
+        let cell = &grid.items[w[0]..w[1]];
+        for (i, &s1) in cell.iter().enumerate() {
+            for &s2 in &cell[i + 1..] {
+                if grid.hit(curves, s1.min(s2), s1.max(s2)) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
 }
 
 fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef)> {
