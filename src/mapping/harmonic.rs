@@ -49,7 +49,8 @@ pub struct Harmonic {
     /// The entries of `L_ff`, laid out as the factor reads them ([`Symbolic::permuted`]).
     values: Vec<f64>,
     weights: Vec<f64>,
-    rhs: Mat<f64>,
+    /// The right-hand side, then the solution, in [`Symbolic::solve`]'s rows.
+    rhs: Vec<Point>,
     /// The last [`Harmonic::solve`]'s metric, its final weights and factor: a composite-map
     /// step that is rejected is retried, shorter, from the same mesh, so the same matrix.
     last: Option<Box<Factored>>,
@@ -75,6 +76,10 @@ struct Symbolic {
     cholesky: SymbolicCholesky<usize>,
     /// The permuted matrix's pattern, on the side the numeric factorization reads.
     permuted: SymbolicSparseColMat<usize>,
+    /// Free index → row of [`Symbolic::solve`]'s vector: the factor's ordering for a
+    /// simplicial factor (solved here, unpermuted), the free index itself for a supernodal
+    /// one (faer permutes).
+    position: Vec<usize>,
 }
 
 impl Symbolic {
@@ -123,7 +128,18 @@ impl Symbolic {
             place[id as usize] = at;
         }
         let permuted = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
-        Ok((Symbolic { cholesky, permuted }, place))
+        let position = match cholesky.raw() {
+            SymbolicCholeskyRaw::Simplicial(_) => perm.arrays().1.to_vec(),
+            SymbolicCholeskyRaw::Supernodal(_) => identity,
+        };
+        Ok((
+            Symbolic {
+                cholesky,
+                permuted,
+                position,
+            },
+            place,
+        ))
     }
 
     /// The numeric factor of the matrix with `values` laid out as [`Symbolic::permuted`], or
@@ -159,20 +175,62 @@ impl Symbolic {
         factored.ok().map(|()| l)
     }
 
-    /// Solves with the factor `l` (from [`Symbolic::factor`]) in place of `rhs`.
-    fn solve(&self, l: &[f64], rhs: faer::MatMut<'_, f64>) -> Result<()> {
+    /// Solves with the factor `l` (from [`Symbolic::factor`]) in place of `x`, both
+    /// coordinates at once, row `position[f]` for free index `f`.
+    ///
+    /// A simplicial factor is solved here with faer's arithmetic (`LltRef`'s solve: each
+    /// column's pivot times the diagonal's reciprocal, the scatter down the columns, then each
+    /// column's terms summed from its last entry up), so the bits are faer's; but the rows
+    /// stay in the factor's ordering, where faer permutes the right-hand side in and out of a
+    /// scratch matrix it allocates, and one pass over `L` serves both coordinates.
+    fn solve(&self, l: &[f64], x: &mut [Point]) -> Result<()> {
+        let SymbolicCholeskyRaw::Simplicial(s) = self.cholesky.raw() else {
+            return self.solve_supernodal(l, x);
+        };
+        let (ptr, idx) = (s.col_ptr(), s.row_idx());
+        let n = x.len();
+        if ptr.len() != n + 1 || l.len() < ptr[n] {
+            return Err(Error::internal(
+                "harmonic map: factor does not fit the system",
+            ));
+        }
+        // L y = b.
+        for j in 0..n {
+            let (a, b) = (ptr[j], ptr[j + 1]);
+            let xj = x[j] * l[a].recip();
+            x[j] = xj;
+            for (&i, &lij) in idx[a + 1..b].iter().zip(&l[a + 1..b]) {
+                x[i] -= xj * lij;
+            }
+        }
+        // Lᵀ x = y.
+        for j in (0..n).rev() {
+            let (a, b) = (ptr[j], ptr[j + 1]);
+            let mut acc = Point::ZERO;
+            for (&i, &lij) in idx[a + 1..b].iter().zip(&l[a + 1..b]).rev() {
+                acc += x[i] * lij;
+            }
+            x[j] = (x[j] - acc) * l[a].recip();
+        }
+        Ok(())
+    }
+
+    /// [`Symbolic::solve`] for a supernodal factor, through faer (rows are free indices).
+    fn solve_supernodal(&self, l: &[f64], x: &mut [Point]) -> Result<()> {
+        let mut rhs = Mat::from_fn(x.len(), 2, |i, k| if k == 0 { x[i].x } else { x[i].y });
         let par = faer::get_global_parallelism();
-        let scratch = self
-            .cholesky
-            .solve_in_place_scratch::<f64>(rhs.ncols(), par);
+        let scratch = self.cholesky.solve_in_place_scratch::<f64>(2, par);
         let mut mem = MemBuffer::try_new(scratch)
             .map_err(|e| Error::internal(format!("harmonic map: solver scratch: {e:?}")))?;
         LltRef::<'_, usize, f64>::new(&self.cholesky, l).solve_in_place_with_conj(
             Conj::No,
-            rhs,
+            rhs.as_mut(),
             par,
             MemStack::new(&mut mem),
         );
+        for (i, p) in x.iter_mut().enumerate() {
+            *p = Point::new(rhs[(i, 0)], rhs[(i, 1)]);
+        }
         Ok(())
     }
 }
@@ -292,7 +350,7 @@ impl Harmonic {
             diag_slot,
             symbolic,
             values: vec![0.0; nnz],
-            rhs: Mat::zeros(nf, 2),
+            rhs: vec![Point::ZERO; nf],
             last: None,
         })
     }
@@ -428,28 +486,24 @@ impl Harmonic {
         let Some(symbolic) = self.symbolic.as_deref() else {
             return Ok(());
         };
-        let nf = self.free_vertices.len();
-        self.rhs.fill(0.0);
+        let position = &symbolic.position;
+        self.rhs.fill(Point::ZERO);
         for (e, &(a, b)) in self.edges.iter().enumerate() {
             let w = self.weights[e];
             let (fa, fb) = (self.free_index[a as usize], self.free_index[b as usize]);
             if fa != NONE && fb == NONE {
-                let q = out[b as usize];
-                self.rhs[(fa as usize, 0)] += w * q.x;
-                self.rhs[(fa as usize, 1)] += w * q.y;
+                self.rhs[position[fa as usize]] += out[b as usize] * w;
             } else if fb != NONE && fa == NONE {
-                let q = out[a as usize];
-                self.rhs[(fb as usize, 0)] += w * q.x;
-                self.rhs[(fb as usize, 1)] += w * q.y;
+                self.rhs[position[fb as usize]] += out[a as usize] * w;
             }
         }
-        symbolic.solve(llt, self.rhs.as_mut())?;
-        for f in 0..nf {
-            let p = Point::new(self.rhs[(f, 0)], self.rhs[(f, 1)]);
+        symbolic.solve(llt, &mut self.rhs)?;
+        for (&v, &at) in self.free_vertices.iter().zip(position) {
+            let p = self.rhs[at];
             if !p.is_finite() {
                 return Err(Error::internal("harmonic map: non-finite solution"));
             }
-            out[self.free_vertices[f] as usize] = p;
+            out[v as usize] = p;
         }
         Ok(())
     }
@@ -560,20 +614,20 @@ mod tests {
                 laid_out[at] = v;
             }
             let l = ours.factor(&laid_out).unwrap();
-            let mut got = rhs.clone();
-            ours.solve(&l, got.as_mut()).unwrap();
+            let mut got = vec![Point::ZERO; n];
+            for i in 0..n {
+                got[ours.position[i]] = Point::new(rhs[(i, 0)], rhs[(i, 1)]);
+            }
+            ours.solve(&l, &mut got).unwrap();
             let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper).unwrap();
             let mat = SparseColMatRef::new(pattern.as_ref(), &values);
             let llt = Llt::try_new_with_symbolic(symbolic, mat, Side::Upper).unwrap();
             let mut want = rhs.clone();
             llt.solve_in_place(want.as_mut());
             for i in 0..n {
-                for k in 0..2 {
-                    assert_eq!(
-                        got[(i, k)].to_bits(),
-                        want[(i, k)].to_bits(),
-                        "{side}²: row {i}"
-                    );
+                let p = got[ours.position[i]];
+                for (k, v) in [p.x, p.y].into_iter().enumerate() {
+                    assert_eq!(v.to_bits(), want[(i, k)].to_bits(), "{side}²: row {i}");
                 }
             }
         }
