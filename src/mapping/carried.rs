@@ -200,7 +200,8 @@ impl<'a> Nearby<'a> {
             (a.max(0.0) as usize).min(n - 1)..=(b.max(0.0) as usize).min(n - 1)
         };
         let (xs, ys) = (span(p.x, o.x, self.frame.nx), span(p.y, o.y, self.frame.ny));
-        let mut kept = Vec::new();
+        // Room for a typical vertex's carriers, so the list is not grown push by push.
+        let mut kept = Vec::with_capacity(8 * MIN_CARRIERS);
         self.scan(
             p,
             (*xs.start(), *xs.end()),

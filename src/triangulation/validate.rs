@@ -99,7 +99,11 @@ struct EdgeGrid {
 impl EdgeGrid {
     /// `None` when the curves have no edge.
     fn new(curves: &[CurveRef<'_>]) -> Option<Self> {
-        let mut segs: Vec<(EdgeRef, Point, Point)> = Vec::new();
+        let edges = curves
+            .iter()
+            .map(|&(pts, closed)| edge_count(pts, closed))
+            .sum();
+        let mut segs: Vec<(EdgeRef, Point, Point)> = Vec::with_capacity(edges);
         for (c, &(pts, closed)) in curves.iter().enumerate() {
             let n = pts.len();
             for k in 0..edge_count(pts, closed) {
@@ -117,7 +121,7 @@ impl EdgeGrid {
             )
         };
         // Each edge listed in every cell its box overlaps, edges in order within a cell.
-        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(segs.len() * 2);
+        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(segs.len() * 4);
         for (s, &(_, a, b)) in segs.iter().enumerate() {
             let (c0, c1) = (cell_of(a.min(b)), cell_of(a.max(b)));
             for y in c0.1..=c1.1 {
