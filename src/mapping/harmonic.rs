@@ -56,8 +56,9 @@ pub struct Harmonic {
     last: Option<Box<Factored>>,
 }
 
-/// A metric's weights (after any clamping) and its numeric factor, kept for the next solve.
-#[derive(Debug, Clone)]
+/// A metric's weights (after any clamping) and its numeric factor, kept for the next solve;
+/// when the next metric differs, its vectors hold the next ones.
+#[derive(Debug, Clone, Default)]
 struct Factored {
     metric: Vec<Point>,
     weights: Vec<f64>,
@@ -142,27 +143,27 @@ impl Symbolic {
         ))
     }
 
-    /// The numeric factor of the matrix with `values` laid out as [`Symbolic::permuted`], or
-    /// `None` if it is not numerically positive definite.
-    fn factor(&self, values: &[f64]) -> Option<Vec<f64>> {
+    /// The numeric factor of the matrix with `values` laid out as [`Symbolic::permuted`] into
+    /// `l` (its old contents and room reused), or `false` if the matrix is not numerically
+    /// positive definite.
+    fn factor(&self, values: &[f64], l: &mut Vec<f64>) -> bool {
         let a = SparseColMatRef::new(self.permuted.as_ref(), values);
         let cholesky = &self.cholesky;
-        let mut l = vec![0.0; cholesky.len_val()];
+        l.clear();
+        l.resize(cholesky.len_val(), 0.0);
         let par = faer::get_global_parallelism();
         let scratch = cholesky.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-        let mut mem = MemBuffer::try_new(scratch).ok()?;
+        let Ok(mut mem) = MemBuffer::try_new(scratch) else {
+            return false;
+        };
         let stack = MemStack::new(&mut mem);
         let factored = match cholesky.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => simplicial::factorize_simplicial_numeric_llt(
-                &mut l,
-                a,
-                Default::default(),
-                s,
-                stack,
-            )
-            .map(|_| ()),
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                simplicial::factorize_simplicial_numeric_llt(l, a, Default::default(), s, stack)
+                    .map(|_| ())
+            }
             SymbolicCholeskyRaw::Supernodal(s) => supernodal::factorize_supernodal_numeric_llt(
-                &mut l,
+                l,
                 a,
                 Default::default(),
                 s,
@@ -172,7 +173,7 @@ impl Symbolic {
             )
             .map(|_| ()),
         };
-        factored.ok().map(|()| l)
+        factored.is_ok()
     }
 
     /// Solves with the factor `l` (from [`Symbolic::factor`]) in place of `x`, both
@@ -375,6 +376,7 @@ impl Harmonic {
     /// The metric's weights and factor are kept: solving again with the same metric (bit for
     /// bit) and other fixed positions only solves.
     pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
+        let mut spare = None;
         if let Some(last) = self.last.take() {
             if same_metric(&last.metric, metric) && out.len() == metric.len() {
                 self.weights.copy_from_slice(&last.weights);
@@ -382,6 +384,7 @@ impl Harmonic {
                 self.last = Some(last);
                 return done;
             }
+            spare = Some(last);
         }
         let Some(symbolic) = self.weigh(metric, out)? else {
             return Ok(());
@@ -391,26 +394,22 @@ impl Harmonic {
                 "harmonic map: degenerate triangle in the metric",
             ));
         }
-        let llt = match self.factor(&symbolic, None) {
-            Some(llt) => llt,
-            None => {
-                // Numerically indefinite: clamp to a positive floor (a convex-combination map).
-                let mean = self.weights.iter().map(|w| w.abs()).sum::<f64>()
-                    / self.weights.len().max(1) as f64;
-                let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
-                log::debug!(
-                    "harmonic map: cotangent matrix not positive definite, clamping weights"
-                );
-                self.factor(&symbolic, Some(floor))
-                    .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?
+        let mut kept = spare.unwrap_or_default();
+        if !self.factor(&symbolic, None, &mut kept.llt) {
+            // Numerically indefinite: clamp to a positive floor (a convex-combination map).
+            let mean = self.weights.iter().map(|w| w.abs()).sum::<f64>()
+                / self.weights.len().max(1) as f64;
+            let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
+            log::debug!("harmonic map: cotangent matrix not positive definite, clamping weights");
+            if !self.factor(&symbolic, Some(floor), &mut kept.llt) {
+                return Err(Error::internal("harmonic map: factorization failed"));
             }
-        };
-        let done = self.finish(&llt, out);
-        self.last = Some(Box::new(Factored {
-            metric: metric.to_vec(),
-            weights: self.weights.clone(),
-            llt,
-        }));
+        }
+        let done = self.finish(&kept.llt, out);
+        kept.metric.clear();
+        kept.metric.extend_from_slice(metric);
+        kept.weights.clone_from(&self.weights);
+        self.last = Some(kept);
         done
     }
 
@@ -434,9 +433,10 @@ impl Harmonic {
                 *w = floor;
             }
         }
-        let llt = self
-            .factor(&symbolic, Some(floor))
-            .ok_or_else(|| Error::internal("harmonic map: factorization failed"))?;
+        let mut llt = Vec::new();
+        if !self.factor(&symbolic, Some(floor), &mut llt) {
+            return Err(Error::internal("harmonic map: factorization failed"));
+        }
         self.finish(&llt, out)
     }
 
@@ -457,7 +457,8 @@ impl Harmonic {
 
     /// Assembles `L_ff` from the edge weights (clamped below at `floor` if given, and then stored
     /// back so that the right-hand side uses the same weights) and factors it numerically.
-    fn factor(&mut self, symbolic: &Symbolic, floor: Option<f64>) -> Option<Vec<f64>> {
+    /// The factor goes into `l` (`false` if the matrix is not numerically positive definite).
+    fn factor(&mut self, symbolic: &Symbolic, floor: Option<f64>, l: &mut Vec<f64>) -> bool {
         self.values.fill(0.0);
         for (e, &(a, b)) in self.edges.iter().enumerate() {
             let w = match floor {
@@ -478,7 +479,7 @@ impl Harmonic {
                 self.weights[e] = w;
             }
         }
-        symbolic.factor(&self.values)
+        symbolic.factor(&self.values, l)
     }
 
     /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
@@ -613,7 +614,8 @@ mod tests {
             for (&v, &at) in values.iter().zip(&place) {
                 laid_out[at] = v;
             }
-            let l = ours.factor(&laid_out).unwrap();
+            let mut l = vec![f64::NAN; 3];
+            assert!(ours.factor(&laid_out, &mut l));
             let mut got = vec![Point::ZERO; n];
             for i in 0..n {
                 got[ours.position[i]] = Point::new(rhs[(i, 0)], rhs[(i, 1)]);
