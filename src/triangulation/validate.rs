@@ -47,30 +47,23 @@ pub(crate) fn crossing_curves(curves: &[CurveRef<'_>]) -> Vec<(usize, usize)> {
 /// Whether any two curve edges cross or touch (as in [`first_crossing`]): the composite
 /// mapping's test of every step's intermediate curves. It tests the grid's candidate pairs as
 /// they come, stopping at the first hit, without collecting and sorting them (a pair shared by
-/// two cells is tested twice, which cannot change the answer). Plain loops over each cell's
-/// pairs, not [`EdgeGrid::candidates`]: its nested iterators cost as much as the tests.
+/// two cells is tested twice, which cannot change the answer).
 pub(crate) fn curves_cross(curves: &[CurveRef<'_>]) -> bool {
     let Some(grid) = EdgeGrid::new(curves) else {
         return false;
     };
-    for w in grid.start.windows(2) {
-        let cell = &grid.items[w[0]..w[1]];
-        for (i, &s1) in cell.iter().enumerate() {
-            for &s2 in &cell[i + 1..] {
-                if grid.hit(curves, s1.min(s2), s1.max(s2)) {
-                    return true;
-                }
-            }
-        }
-    }
-    false
+    grid.any_candidate(|s1, s2| grid.hit(curves, s1, s2))
 }
 
 fn crossings(curves: &[CurveRef<'_>], first_only: bool) -> Vec<(EdgeRef, EdgeRef)> {
     let Some(grid) = EdgeGrid::new(curves) else {
         return Vec::new();
     };
-    let mut pairs: Vec<(u32, u32)> = grid.candidates().collect();
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    grid.any_candidate(|s1, s2| {
+        pairs.push((s1, s2));
+        false
+    });
     pairs.sort_unstable();
     pairs.dedup();
     let mut found = Vec::new();
@@ -134,17 +127,21 @@ impl EdgeGrid {
         Some(EdgeGrid { segs, start, items })
     }
 
-    /// The pairs of edges `(s1, s2)`, `s1 < s2`, that share a cell: every pair that can
-    /// cross, some more than once.
-    fn candidates(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        self.start.windows(2).flat_map(move |w| {
+    /// Whether `f` holds for any pair of edges `(s1, s2)`, `s1 < s2`, that share a cell (every
+    /// pair that can cross, some more than once), stopping at the first. Plain loops over each
+    /// cell's pairs: nested iterators cost the crossing test as much as its exact tests did.
+    fn any_candidate(&self, mut f: impl FnMut(u32, u32) -> bool) -> bool {
+        for w in self.start.windows(2) {
             let cell = &self.items[w[0]..w[1]];
-            cell.iter().enumerate().flat_map(move |(i, &s1)| {
-                cell[i + 1..]
-                    .iter()
-                    .map(move |&s2| (s1.min(s2), s1.max(s2)))
-            })
-        })
+            for (i, &s1) in cell.iter().enumerate() {
+                for &s2 in &cell[i + 1..] {
+                    if f(s1.min(s2), s1.max(s2)) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
     }
 
     /// Whether edges `s1 < s2` cross or touch; two consecutive edges of one curve only when
