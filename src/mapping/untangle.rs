@@ -17,6 +17,7 @@
 //! interpolation of §4.1 from folding them in between.
 
 use crate::geometry::Point;
+use crate::mesh::sort_unique;
 
 /// Per vertex, the incident triangles as the counter-clockwise opposite edge `(a, b)` (the
 /// triangle is `(v, a, b)`), and the mesh's vertex neighbours.
@@ -107,6 +108,7 @@ impl Untangler {
         let mut active: Vec<u32> = Vec::new();
         let mut stuck: Vec<u32> = Vec::new();
         let mut scratch = Scratch::default();
+        let mut marks = Vec::new();
         // The triangles for which `bad` holds, kept up to date: only a moved vertex's
         // triangles can change.
         let mut tangled: Vec<u32> = (0..triangles.len() as u32)
@@ -132,8 +134,7 @@ impl Untangler {
                         .filter(|&&w| !self.fixed[w as usize]),
                 );
             }
-            active.sort_unstable();
-            active.dedup();
+            sort_unique(&mut active, &mut marks);
             if active.is_empty() {
                 return false;
             }
@@ -152,8 +153,7 @@ impl Untangler {
             for &v in &active {
                 tangled.extend_from_slice(self.incident(v as usize));
             }
-            tangled.sort_unstable();
-            tangled.dedup();
+            sort_unique(&mut tangled, &mut marks);
             tangled.retain(|&f| bad(&triangles[f as usize], points));
             // A hopeless tangle: freeing PACE times more triangles per sweep than the best
             // sweep so far would still not clear it in the sweeps left.
@@ -204,6 +204,7 @@ impl Untangler {
         let mut changed = vec![true; self.fixed.len()];
         let mut now_changed = vec![false; self.fixed.len()];
         let mut scratch = Scratch::default();
+        let mut marks = Vec::new();
         // Which triangles are distorted: only a moved vertex's triangles can change.
         let is_distorted =
             |f: usize, pts: &[Point]| quality(&triangles[f], pts) < DISTORTED * rest_quality[f];
@@ -222,8 +223,7 @@ impl Untangler {
             for (t, _) in triangles.iter().zip(&distorted).filter(|(_, &d)| d) {
                 active.extend(t.iter().filter(|&&v| !self.fixed[v as usize]));
             }
-            active.sort_unstable();
-            active.dedup();
+            sort_unique(&mut active, &mut marks);
             if active.is_empty() {
                 return;
             }
