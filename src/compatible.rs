@@ -8,7 +8,7 @@
 use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
-use crate::mapping::{composite_map, MappingOptions, MappingStats};
+use crate::mapping::{composite_map_reusing, Attachments, MappingOptions, MappingStats};
 use crate::mesh::{CompatibleMeshes, Side};
 use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
 use crate::tolerance::Tolerances;
@@ -226,7 +226,8 @@ pub(crate) fn build_accepted<T>(
     accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
 ) -> Result<(Compatible, T)> {
     let (tol, pairs) = checked_curve_pairs(source, target, opts)?;
-    build_accepted_from(source, target, opts, (tol, pairs), accept)
+    let made = &mut Attachments::default();
+    build_accepted_from(source, target, opts, (tol, pairs), made, accept)
 }
 
 /// The first stage of [`build`] and [`build_accepted`]: the vertex budget checked, then the
@@ -242,17 +243,21 @@ pub(crate) fn checked_curve_pairs(
 }
 
 /// [`build_accepted`] from the curve pairs that [`checked_curve_pairs`] gave for the same
-/// drawings and options (any [`MorphOptions::triangulated`]).
+/// drawings and options (any [`MorphOptions::triangulated`]); the mapping's carried features
+/// take their attachments from `made` and keep them there for the next build of the same
+/// curves.
 pub(crate) fn build_accepted_from<T>(
     source: &Drawing,
     target: &Drawing,
     opts: &MorphOptions,
     (tol, pairs): (Tolerances, Vec<CurvePair>),
+    made: &mut Attachments,
     accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
 ) -> Result<(Compatible, T)> {
     let fix = |e| name_files(e, source, target);
     let tri = triangulate(&pairs, &tol, opts.triangulated).map_err(fix)?;
-    let (meshes, stats) = composite_map(&tri, &pairs, &tol, &opts.mapping).map_err(fix)?;
+    let (meshes, stats) =
+        composite_map_reusing(&tri, &pairs, &tol, &opts.mapping, made).map_err(fix)?;
     let plain = Compatible {
         meshes,
         pairs,
@@ -309,6 +314,7 @@ pub(crate) fn build_accepted_from<T>(
 mod tests {
     use super::*;
     use crate::drawing::ReadOptions;
+    use crate::mapping::composite_map;
 
     #[test]
     fn each_placeholder_names_its_own_file_whichever_side_is_triangulated() {

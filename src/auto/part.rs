@@ -23,6 +23,7 @@ use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
 use crate::geometry::Point;
+use crate::mapping::Attachments;
 use crate::mesh::{CompatibleMeshes, CurveKind, MeshCurve, Side};
 use crate::rigid::{DiscSetup, Interpolator, Repair};
 use crate::tolerance::Tolerances;
@@ -241,6 +242,8 @@ pub(crate) fn build_part(
     // Rung 1: the paper's mapping, holes given up one at a time (strokes have no inside).
     let stroke = a.kind == super::contours::ContourKind::Stroke;
     let mut holes: Vec<(usize, usize)> = plan.holes.clone();
+    // Every map of the ladder attaches the same holes to the same outline.
+    let made = &mut Attachments::default();
     loop {
         if stroke {
             break;
@@ -298,7 +301,8 @@ pub(crate) fn build_part(
         for (triangulated, pairs) in sides {
             let mut o = inputs.opts.clone();
             o.triangulated = triangulated;
-            let checked = build_accepted_from(&s, &t, &o, pairs.clone(), moves_without_folding);
+            let checked =
+                build_accepted_from(&s, &t, &o, pairs.clone(), made, moves_without_folding);
             match checked {
                 Ok((c, repair)) => {
                     let features = holes

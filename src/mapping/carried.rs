@@ -16,6 +16,7 @@
 
 use crate::geometry::Point;
 use crate::grid::GridFrame;
+use std::sync::Arc;
 
 /// Fewest boundary vertices carrying one feature vertex.
 const MIN_CARRIERS: usize = 4;
@@ -42,8 +43,75 @@ struct Attachment {
 /// Feature vertices attached to the boundary at both ends of the morph.
 #[derive(Debug, Clone)]
 pub(crate) struct Carried {
-    /// Per feature, per vertex: attachments at t = 0 and t = 1.
-    features: Vec<Vec<[Attachment; 2]>>,
+    /// Per feature: its vertices' attachments at t = 0 and at t = 1.
+    features: Vec<[Arc<[Attachment]>; 2]>,
+}
+
+/// Attachments already made, kept from one carried model to the next (issue 16). Automatic
+/// mode maps each part from either side, and again each time it gives up a hole, and every
+/// such map attached the same feature curves to the same boundary anew: a model of `k`
+/// features for each of the `2k` maps of the ladder. An attachment depends only on the
+/// boundary and the feature vertex, so it is looked up by their bits and made once.
+#[derive(Debug, Default)]
+pub(crate) struct Attachments {
+    /// Per boundary seen: its vertices and the feature curves attached to it.
+    boundaries: Vec<AttachedTo>,
+}
+
+/// The feature curves attached to one boundary.
+#[derive(Debug)]
+struct AttachedTo {
+    boundary: Vec<Point>,
+    /// Per feature curve: its vertices and their attachments.
+    features: Vec<(Vec<Point>, Arc<[Attachment]>)>,
+}
+
+/// Whether two vertex lists are the same bit for bit (so that an attachment made for one is
+/// exactly the attachment of the other).
+fn same_bits(a: &[Point], b: &[Point]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
+}
+
+impl Attachments {
+    /// The attachments of every vertex of each of `features` to `boundary`: those made before
+    /// for the same curves, the others made now.
+    fn attach(&mut self, boundary: &[Point], features: &[&[Point]]) -> Vec<Arc<[Attachment]>> {
+        let k = match self
+            .boundaries
+            .iter()
+            .position(|b| same_bits(&b.boundary, boundary))
+        {
+            Some(k) => k,
+            None => {
+                self.boundaries.push(AttachedTo {
+                    boundary: boundary.to_vec(),
+                    features: Vec::new(),
+                });
+                self.boundaries.len() - 1
+            }
+        };
+        let known = &mut self.boundaries[k].features;
+        // The grid is built only when some feature is new.
+        let mut near: Option<Option<Nearby<'_>>> = None;
+        features
+            .iter()
+            .map(|f| {
+                if let Some((_, a)) = known.iter().find(|(g, _)| same_bits(g, f)) {
+                    return a.clone();
+                }
+                let grid = near.get_or_insert_with(|| Nearby::new(boundary));
+                let a: Arc<[Attachment]> = f
+                    .iter()
+                    .map(|&p| attach(boundary, grid.as_ref(), p))
+                    .collect();
+                known.push((f.to_vec(), a.clone()));
+                a
+            })
+            .collect()
+    }
 }
 
 /// The boundary vertices that carry `p`, by a scan of the whole boundary: every vertex within
@@ -285,25 +353,24 @@ fn carry(a: &Attachment, to: &[Point]) -> Point {
 
 impl Carried {
     /// Attaches the features (`features[f] = (source, target)` vertex lists) to the boundary
-    /// `(source, target)`. `None` if the boundary has no vertices or the two sides differ in
-    /// length.
+    /// `(source, target)`, taking from `made` the attachments it holds and keeping there the
+    /// ones made now. `None` if the boundary has no vertices or the two sides differ in length.
     pub(crate) fn new(
         boundary: (&[Point], &[Point]),
         features: &[(&[Point], &[Point])],
+        made: &mut Attachments,
     ) -> Option<Self> {
         let (b0, b1) = boundary;
         if b0.is_empty() || b1.len() != b0.len() {
             return None;
         }
-        let (g0, g1) = (Nearby::new(b0), Nearby::new(b1));
-        let features = features
-            .iter()
-            .map(|(f0, f1)| {
-                f0.iter()
-                    .zip(f1.iter())
-                    .map(|(&p, &q)| [attach(b0, g0.as_ref(), p), attach(b1, g1.as_ref(), q)])
-                    .collect()
-            })
+        let f0: Vec<&[Point]> = features.iter().map(|f| f.0).collect();
+        let f1: Vec<&[Point]> = features.iter().map(|f| f.1).collect();
+        let features = made
+            .attach(b0, &f0)
+            .into_iter()
+            .zip(made.attach(b1, &f1))
+            .map(|(a0, a1)| [a0, a1])
             .collect();
         Some(Carried { features })
     }
@@ -311,9 +378,9 @@ impl Carried {
     /// The features at `t`, given the intermediate boundary `boundary_t` (same vertex count),
     /// into `out[f]`.
     pub(crate) fn features_at(&self, t: f64, boundary_t: &[Point], out: &mut [Vec<Point>]) {
-        for (o, f) in out.iter_mut().zip(&self.features) {
+        for (o, [f0, f1]) in out.iter_mut().zip(&self.features) {
             o.clear();
-            o.extend(f.iter().map(|[a0, a1]| {
+            o.extend(f0.iter().zip(f1.iter()).map(|(a0, a1)| {
                 let p0 = carry(a0, boundary_t);
                 let p1 = carry(a1, boundary_t);
                 p0 * (1.0 - t) + p1 * t
@@ -408,6 +475,73 @@ mod tests {
                 .collect();
             assert_grid_matches_scan(&b, Point::new(place(p.0), place(p.1)))?;
         }
+    }
+
+    /// A circle of `n` vertices of radius `r` about `c`.
+    fn circle(n: usize, r: f64, c: Point) -> Vec<Point> {
+        (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                c + Point::new(r * a.cos(), r * a.sin())
+            })
+            .collect()
+    }
+
+    /// The features at a few times, as bits.
+    fn features_bits(c: &Carried, boundary_t: &[Point], n: usize) -> Vec<Vec<(u64, u64)>> {
+        let mut out = vec![Vec::new(); n];
+        let mut bits = Vec::new();
+        for t in [0.0, 0.3, 0.7, 1.0] {
+            c.features_at(t, boundary_t, &mut out);
+            bits.extend(
+                out.iter()
+                    .map(|f| f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()),
+            );
+        }
+        bits
+    }
+
+    #[test]
+    fn attachments_kept_from_earlier_models_are_reused_and_carry_alike() {
+        let (b0, b1) = (
+            circle(40, 10.0, Point::ZERO),
+            circle(40, 12.0, Point::new(3.0, -1.0)),
+        );
+        let (h0, h1) = (
+            circle(9, 2.0, Point::new(3.0, 1.0)),
+            circle(9, 3.0, Point::new(5.0, 0.0)),
+        );
+        let (k0, k1) = (
+            circle(7, 1.5, Point::new(-4.0, -2.0)),
+            circle(7, 1.0, Point::new(-2.0, -4.0)),
+        );
+        let both = [(&h0[..], &h1[..]), (&k0[..], &k1[..])];
+        let fresh = Carried::new((&b0, &b1), &both, &mut Attachments::default()).unwrap();
+        let made = &mut Attachments::default();
+        // A model with one hole, then the other way round (the other side triangulated), then
+        // both holes: the last takes the first hole's attachments from the first two.
+        let one = Carried::new((&b0, &b1), &both[..1], made).unwrap();
+        let reversed = Carried::new((&b1, &b0), &[(&h1[..], &h0[..])], made).unwrap();
+        let reused = Carried::new((&b0, &b1), &both, made).unwrap();
+        assert!(Arc::ptr_eq(&one.features[0][0], &reused.features[0][0]));
+        assert!(Arc::ptr_eq(
+            &reversed.features[0][0],
+            &reused.features[0][1]
+        ));
+        assert!(Arc::ptr_eq(&one.features[0][0], &reversed.features[0][1]));
+        assert_eq!(made.boundaries.len(), 2);
+        // Reused or made anew, the features move to the same bits.
+        let mid = circle(40, 11.0, Point::new(1.0, 0.5));
+        assert_eq!(
+            features_bits(&reused, &mid, 2),
+            features_bits(&fresh, &mid, 2)
+        );
+        // A boundary that differs in one bit is another boundary.
+        let mut moved = b0.clone();
+        moved[3].x = f64::from_bits(moved[3].x.to_bits() + 1);
+        let other = Carried::new((&moved, &b1), &both[..1], made).unwrap();
+        assert!(!Arc::ptr_eq(&other.features[0][0], &one.features[0][0]));
+        assert_eq!(made.boundaries.len(), 3);
     }
 
     #[test]

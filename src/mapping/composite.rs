@@ -18,6 +18,7 @@
 //! sequence exists, and the mapping reports the curves concerned instead of returning a folded
 //! mesh.
 
+use super::carried::Attachments;
 use super::harmonic::Harmonic;
 use super::shape_model::ShapeModel;
 use super::untangle::Untangler;
@@ -132,6 +133,19 @@ pub fn composite_map(
     tol: &Tolerances,
     opts: &MappingOptions,
 ) -> Result<(CompatibleMeshes, MappingStats)> {
+    composite_map_reusing(tri, pairs, tol, opts, &mut Attachments::default())
+}
+
+/// [`composite_map`], with the carried features' attachments to the boundary taken from
+/// `made` where it holds them and kept there (issue 16: automatic mode maps the same curves
+/// from both sides and again after giving up each hole).
+pub(crate) fn composite_map_reusing(
+    tri: &Triangulation,
+    pairs: &[CurvePair],
+    tol: &Tolerances,
+    opts: &MappingOptions,
+    made: &mut Attachments,
+) -> Result<(CompatibleMeshes, MappingStats)> {
     let triangulated = tri.triangulated;
     validate_curves(pairs, tol, triangulated.other())?;
     if tri.curves.len() != pairs.len()
@@ -169,7 +183,7 @@ pub fn composite_map(
     let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
         Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
             log::debug!("composite map: BSM path failed ({e}), trying carried features");
-            let carried = ShapeModel::carried(pairs, triangulated)?;
+            let carried = ShapeModel::carried_reusing(pairs, triangulated, made)?;
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
             let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);

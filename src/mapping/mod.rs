@@ -17,6 +17,8 @@ pub mod samples;
 pub mod shape_model;
 mod untangle;
 
+pub(crate) use carried::Attachments;
+pub(crate) use composite::composite_map_reusing;
 pub use composite::{composite_map, Intermediates, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;
 pub(crate) use relax::relax_towards;

@@ -11,7 +11,7 @@
 //! best-fit rotation relative to the source curve is `t` times the source-to-target rotation, and
 //! moved so that its barycenter sits on the barycenter mesh's node at `t`.
 
-use super::carried::Carried;
+use super::carried::{Attachments, Carried};
 use crate::correspondence::CurvePair;
 use crate::geometry::{bounding_box, centroid, Point};
 use crate::mesh::Side;
@@ -241,13 +241,24 @@ impl ShapeModel {
     /// swings (a U becoming an S) swings with it. The composite mapping tries it when the BSM
     /// path folds the mesh. Falls back to the plain BSM when the boundary has a zero-length edge.
     pub fn carried(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
+        Self::carried_reusing(pairs, triangulated, &mut Attachments::default())
+    }
+
+    /// [`ShapeModel::carried`], taking the attachments of feature vertices to the boundary
+    /// from `made` where it holds them and keeping there the ones made now (issue 16: the
+    /// models of one part's maps share them).
+    pub(crate) fn carried_reusing(
+        pairs: &[CurvePair],
+        triangulated: Side,
+        made: &mut Attachments,
+    ) -> Result<Self> {
         let mut m = ShapeModel::new(pairs, triangulated)?;
         if let Some((b, fs)) = m.curves.split_first() {
             let features: Vec<(&[Point], &[Point])> = fs
                 .iter()
                 .map(|c| (c.from.as_slice(), c.to.as_slice()))
                 .collect();
-            m.carried = Carried::new((&b.from, &b.to), &features);
+            m.carried = Carried::new((&b.from, &b.to), &features, made);
         }
         Ok(m)
     }
