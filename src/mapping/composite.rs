@@ -38,7 +38,8 @@ pub struct MappingOptions {
     /// Number of equal steps tried first; also bounds the largest step (`1 / initial_steps`).
     /// Default: 4.
     pub initial_steps: usize,
-    /// Largest number of harmonic maps computed in total, accepted or rejected. Default: 2048.
+    /// Largest number of harmonic maps one walk computes, accepted or rejected. Default: 2048
+    /// (automatic mode, which has other rungs to fall to, takes at most 128 per walk).
     pub max_steps: usize,
     /// Smallest step in `t` before giving up. Default: 1/4096.
     pub min_step: f64,
