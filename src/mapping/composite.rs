@@ -181,25 +181,28 @@ pub(crate) fn composite_map_reusing(
         harmonic: &mut harmonic,
         untangler: &untangler,
     };
-    let bsm = match walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats) {
+    // Only the BSM path's failure is reported: the paths tried after it explain nothing.
+    let bsm = walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats)
+        .map_err(|stop| stop.explain(&model, pairs, tri));
+    let (bsm, model) = match bsm {
         Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
             log::debug!("composite map: BSM path failed ({e}), trying carried features");
-            let carried = ShapeModel::carried_reusing(pairs, triangulated, made)?;
+            let carried = model.with_carried(made);
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
             let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
             if r.is_ok() {
                 stats.path = Intermediates::Carried;
             }
-            r.map_err(|_| e)
+            (r.map_err(|_| e), carried)
         }
-        r => r,
+        r => (r, model),
     };
     let current = match bsm {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.last_resort == Intermediates::Straight => {
             log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
-            let linear = ShapeModel::linear(pairs, triangulated)?;
+            let linear = model.into_linear();
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
             let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
@@ -242,6 +245,39 @@ struct Solver<'a> {
     untangler: &'a Untangler,
 }
 
+/// Why a walk stopped short of t = 1. Only the first path's failure is reported to the user,
+/// so the error that names curves (dear to find: the crossings at `t`, the curves nearest the
+/// folds) is built only for it ([`Stop::explain`]).
+enum Stop {
+    /// The map could not be computed.
+    Broken(Error),
+    /// The intermediate curves cross at `t`.
+    Crossing { t: f64 },
+    /// The maximum number of maps was reached before `t`.
+    TooManyMaps { t: f64 },
+    /// The step fell below the smallest at `t`; `attempt` is the last rejected map.
+    Folded { t: f64, attempt: Vec<Point> },
+}
+
+impl Stop {
+    /// The error for the user: names the curves that cross or that the mesh folds near.
+    fn explain(self, model: &ShapeModel, pairs: &[CurvePair], tri: &Triangulation) -> Error {
+        let mut curves = Vec::new();
+        match self {
+            Stop::Broken(e) => e,
+            Stop::Crossing { t } => failure(model, pairs, t, &mut curves, ""),
+            Stop::TooManyMaps { t } => failure(
+                model,
+                pairs,
+                t,
+                &mut curves,
+                " within the maximum number of steps",
+            ),
+            Stop::Folded { t, attempt } => flip_report(model, pairs, tri, t, &attempt, &mut curves),
+        }
+    }
+}
+
 /// Follows the intermediate curves of `model` from t = 0 to 1 with adaptive steps no longer
 /// than `h_max`; returns the vertex positions at t = 1.
 fn walk(
@@ -252,7 +288,7 @@ fn walk(
     solver: &mut Solver<'_>,
     opts: &MappingOptions,
     stats: &mut MappingStats,
-) -> Result<Vec<Point>> {
+) -> std::result::Result<Vec<Point>, Stop> {
     let mut current = tri.points.clone();
     let mut next = current.clone();
     // No triangle inverted or a sliver (a bad triangle includes every inverted one, so this
@@ -264,13 +300,7 @@ fn walk(
     let mut step = Step::new(h_max);
     while t < 1.0 {
         if maps >= opts.max_steps {
-            return Err(failure(
-                model,
-                pairs,
-                t + step.h,
-                &mut curves,
-                " within the maximum number of steps",
-            ));
+            return Err(Stop::TooManyMaps { t: t + step.h });
         }
         maps += 1;
         let t1 = if t + step.h >= 1.0 - 1e-12 {
@@ -290,7 +320,7 @@ fn walk(
         // Curves that cross at t1 block this path whatever the step: the walk must pass t1.
         if crossing {
             stats.rejected_steps += 1;
-            return Err(failure(model, pairs, t1, &mut curves, ""));
+            return Err(Stop::Crossing { t: t1 });
         }
         let (ok, clean) = {
             next.copy_from_slice(&current);
@@ -299,7 +329,10 @@ fn walk(
                     next[v as usize] = q;
                 }
             }
-            solver.harmonic.solve(&current, &mut next)?;
+            solver
+                .harmonic
+                .solve(&current, &mut next)
+                .map_err(Stop::Broken)?;
             if valid(&next) {
                 (true, true)
             } else {
@@ -317,7 +350,10 @@ fn walk(
             stats.rejected_steps += 1;
             step.rejected();
             if step.h < min_step {
-                return Err(flip_report(model, pairs, tri, t1, &next, &mut curves));
+                return Err(Stop::Folded {
+                    t: t1,
+                    attempt: next,
+                });
             }
         }
     }

@@ -229,10 +229,16 @@ impl ShapeModel {
     /// in place relative to each other, so the composite mapping falls back to it when the BSM
     /// path folds the mesh.
     pub fn linear(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
-        let mut m = ShapeModel::new(pairs, triangulated)?;
-        m.interpolator = None;
-        m.linear = true;
-        Ok(m)
+        Ok(ShapeModel::new(pairs, triangulated)?.into_linear())
+    }
+
+    /// This model's curves followed along straight lines ([`ShapeModel::linear`]), without
+    /// building the model again (the composite mapping turns to it when its other paths fail).
+    pub(crate) fn into_linear(mut self) -> Self {
+        self.interpolator = None;
+        self.carried = None;
+        self.linear = true;
+        self
     }
 
     /// The BSM's boundary with the features carried by it: each feature vertex keeps its
@@ -241,26 +247,21 @@ impl ShapeModel {
     /// swings (a U becoming an S) swings with it. The composite mapping tries it when the BSM
     /// path folds the mesh. Falls back to the plain BSM when the boundary has a zero-length edge.
     pub fn carried(pairs: &[CurvePair], triangulated: Side) -> Result<Self> {
-        Self::carried_reusing(pairs, triangulated, &mut Attachments::default())
+        Ok(ShapeModel::new(pairs, triangulated)?.with_carried(&mut Attachments::default()))
     }
 
-    /// [`ShapeModel::carried`], taking the attachments of feature vertices to the boundary
-    /// from `made` where it holds them and keeping there the ones made now (issue 16: the
-    /// models of one part's maps share them).
-    pub(crate) fn carried_reusing(
-        pairs: &[CurvePair],
-        triangulated: Side,
-        made: &mut Attachments,
-    ) -> Result<Self> {
-        let mut m = ShapeModel::new(pairs, triangulated)?;
-        if let Some((b, fs)) = m.curves.split_first() {
+    /// This BSM with its features carried by the boundary ([`ShapeModel::carried`]), taking
+    /// the attachments of feature vertices to the boundary from `made` where it holds them and
+    /// keeping there the ones made now (issue 16: the models of one part's maps share them).
+    pub(crate) fn with_carried(mut self, made: &mut Attachments) -> Self {
+        if let Some((b, fs)) = self.curves.split_first() {
             let features: Vec<(&[Point], &[Point])> = fs
                 .iter()
                 .map(|c| (c.from.as_slice(), c.to.as_slice()))
                 .collect();
-            m.carried = Carried::new((&b.from, &b.to), &features, made);
+            self.carried = Carried::new((&b.from, &b.to), &features, made);
         }
-        Ok(m)
+        self
     }
 
     /// Number of curves.
