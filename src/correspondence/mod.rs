@@ -329,18 +329,24 @@ fn misfit_of(boundary: &CurvePair, f: &CurvePair) -> f64 {
     if k == 0 {
         return 0.0;
     }
+    let n = boundary.source.len();
+    // Per feature vertex: the boundary's squared distances to it, measured once (not at every
+    // comparison), and the same selection from the same starting order.
+    let mut d2 = vec![0.0; n];
+    let mut idx: Vec<usize> = Vec::with_capacity(n);
+    let (mut a, mut b) = (Vec::with_capacity(k), Vec::with_capacity(k));
     let mut sum = 0.0;
     for (&p, &q) in f.source.iter().zip(&f.target) {
-        let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
-        idx.select_nth_unstable_by(k - 1, |&a, &b| {
-            boundary.source[a]
-                .distance_squared(p)
-                .total_cmp(&boundary.source[b].distance_squared(p))
-                .then(a.cmp(&b))
-        });
-        idx.truncate(k);
-        let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
-        let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
+        for (d, v) in d2.iter_mut().zip(&boundary.source) {
+            *d = v.distance_squared(p);
+        }
+        idx.clear();
+        idx.extend(0..n);
+        idx.select_nth_unstable_by(k - 1, |&x, &y| d2[x].total_cmp(&d2[y]).then(x.cmp(&y)));
+        a.clear();
+        a.extend(idx[..k].iter().map(|&i| boundary.source[i]));
+        b.clear();
+        b.extend(idx[..k].iter().map(|&i| boundary.target[i]));
         let (predicted, spread) = orientation::similarity_apply(&a, &b, p);
         sum += predicted.distance(q) / spread.max(f64::MIN_POSITIVE);
     }
@@ -355,14 +361,19 @@ const LOCAL_TURN_VERTICES: usize = 24;
 /// nearest to the feature's centroid (source side), carried to their target twins.
 fn local_turn(boundary: &CurvePair, feature: &[Point]) -> f64 {
     let c = crate::geometry::centroid(feature);
+    let d: Vec<f64> = boundary.source.iter().map(|v| v.distance(c)).collect();
     let mut idx: Vec<usize> = (0..boundary.source.len()).collect();
-    idx.sort_by(|&a, &b| {
-        boundary.source[a]
-            .distance(c)
-            .total_cmp(&boundary.source[b].distance(c))
-            .then(a.cmp(&b))
-    });
-    idx.truncate(LOCAL_TURN_VERTICES.max(boundary.source.len() / 10));
+    // The nearest, in order of distance then index (a total order: selecting them first and
+    // sorting only those gives what sorting the whole boundary gave).
+    let k = LOCAL_TURN_VERTICES
+        .max(boundary.source.len() / 10)
+        .min(idx.len());
+    let by_distance = |x: &usize, y: &usize| d[*x].total_cmp(&d[*y]).then(x.cmp(y));
+    if k > 0 && k < idx.len() {
+        idx.select_nth_unstable_by(k - 1, by_distance);
+    }
+    idx.truncate(k);
+    idx.sort_unstable_by(by_distance);
     let a: Vec<Point> = idx.iter().map(|&i| boundary.source[i]).collect();
     let b: Vec<Point> = idx.iter().map(|&i| boundary.target[i]).collect();
     orientation::best_fit_rotation(&a, &b)
