@@ -5,7 +5,9 @@
 //! mapping through the barycenter-based shape model (§5), and returns meshes that share
 //! connectivity, with every curve vertex on its twin.
 
-use crate::correspondence::{correspond_all, CorrespondenceOptions, CurvePair};
+use crate::correspondence::{
+    correspond_all_reusing, CorrespondenceOptions, Correspondences, CurvePair,
+};
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::mapping::{composite_map_reusing, Attachments, MappingOptions, MappingStats};
@@ -175,14 +177,26 @@ pub fn curve_pairs(
     target: &Drawing,
     opts: &MorphOptions,
 ) -> Result<(Tolerances, Vec<CurvePair>)> {
+    curve_pairs_reusing(source, target, opts, &mut Correspondences::default())
+}
+
+/// [`curve_pairs`], with the correspondences `made` holds for the same curves taken from it
+/// and the new ones kept there.
+fn curve_pairs_reusing(
+    source: &Drawing,
+    target: &Drawing,
+    opts: &MorphOptions,
+    made: &mut Correspondences,
+) -> Result<(Tolerances, Vec<CurvePair>)> {
     let tol = common_tolerances(source, target, opts.density);
-    let pairs = correspond_all(
+    let pairs = correspond_all_reusing(
         &source.file,
         &source.controls,
         &target.file,
         &target.controls,
         &tol,
         &opts.correspondence,
+        made,
     )?;
     Ok((tol, pairs))
 }
@@ -225,21 +239,23 @@ pub(crate) fn build_accepted<T>(
     opts: &MorphOptions,
     accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
 ) -> Result<(Compatible, T)> {
-    let (tol, pairs) = checked_curve_pairs(source, target, opts)?;
+    let (tol, pairs) = checked_curve_pairs(source, target, opts, &mut Correspondences::default())?;
     let made = &mut Attachments::default();
     build_accepted_from(source, target, opts, (tol, pairs), made, accept)
 }
 
 /// The first stage of [`build`] and [`build_accepted`]: the vertex budget checked, then the
-/// curve pairs ([`curve_pairs`]). Neither depends on [`MorphOptions::triangulated`], so
+/// curve pairs ([`curve_pairs`]), taking from `made` the correspondences it holds for the same
+/// curves and keeping the new ones there. Neither depends on [`MorphOptions::triangulated`], so
 /// automatic mode corresponds a hole set once for both sides it tries.
 pub(crate) fn checked_curve_pairs(
     source: &Drawing,
     target: &Drawing,
     opts: &MorphOptions,
+    made: &mut Correspondences,
 ) -> Result<(Tolerances, Vec<CurvePair>)> {
     check_vertex_budget(source, target, opts)?;
-    curve_pairs(source, target, opts)
+    curve_pairs_reusing(source, target, opts, made)
 }
 
 /// [`build_accepted`] from the curve pairs that [`checked_curve_pairs`] gave for the same

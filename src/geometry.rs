@@ -127,6 +127,15 @@ impl SimilarityFit {
     }
 }
 
+/// Whether two point lists are the same bit for bit: what a result computed from one is
+/// exactly the result for the other (`==` would take −0 for 0, and never a NaN for itself).
+pub(crate) fn same_bits(a: &[Point], b: &[Point]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
+}
+
 /// Total length of a polyline, including the closing edge when `closed`.
 pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
     let mut len: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();

@@ -19,7 +19,7 @@
 //! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
 
 use crate::compatible::{build_accepted_from, checked_curve_pairs, Compatible, MorphOptions};
-use crate::correspondence::{correspond, CorrespondenceOptions, CurvePair};
+use crate::correspondence::{correspond, CorrespondenceOptions, Correspondences, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
 use crate::geometry::Point;
@@ -257,7 +257,9 @@ pub(crate) fn build_part(
     // Rung 1: the paper's mapping, holes given up one at a time (strokes have no inside).
     let stroke = a.kind == super::contours::ContourKind::Stroke;
     let mut holes: Vec<(usize, usize)> = plan.holes.clone();
-    // Every map of the ladder attaches the same holes to the same outline.
+    // Every rung corresponds the same outline and holes, and every map attaches the same holes
+    // to the same outline.
+    let correspondences = &mut Correspondences::default();
     let made = &mut Attachments::default();
     loop {
         if stroke {
@@ -302,7 +304,7 @@ pub(crate) fn build_part(
         let mut failure: Option<Error> = None;
         // One correspondence for both sides: it does not depend on the side triangulated, so
         // where it fails, both would.
-        let corresponded = match checked_curve_pairs(&s, &t, inputs.opts) {
+        let corresponded = match checked_curve_pairs(&s, &t, inputs.opts, correspondences) {
             Ok(pairs) => Some(pairs),
             Err(e) => {
                 log::debug!("part {}→{}: {e}", plan.source, plan.target);

@@ -17,6 +17,7 @@
 
 mod matching;
 mod measure;
+mod memo;
 mod orientation;
 mod resample;
 mod salient;
@@ -31,6 +32,8 @@ use crate::tolerance::{Tolerances, MAX_COORDINATE};
 use crate::{Error, Result};
 use matching::Mark;
 use measure::Polyline;
+use memo::Ask;
+pub(crate) use memo::Correspondences;
 use salient::Salient;
 
 /// A source curve and its target twin with equal vertex counts: `source[i]` corresponds to
@@ -176,6 +179,22 @@ pub fn correspond_all(
     tol: &Tolerances,
     opts: &CorrespondenceOptions,
 ) -> Result<Vec<CurvePair>> {
+    let made = &mut Correspondences::default();
+    correspond_all_reusing(src_file, src, tgt_file, tgt, tol, opts, made)
+}
+
+/// [`correspond_all`], taking from `made` the correspondences of curve pairs it made before
+/// (the same curves, anchors, tolerances and options) and keeping there the ones made now
+/// (issue 16: automatic mode corresponds a part again for every hole it gives up).
+pub(crate) fn correspond_all_reusing(
+    src_file: &str,
+    src: &Controls,
+    tgt_file: &str,
+    tgt: &Controls,
+    tol: &Tolerances,
+    opts: &CorrespondenceOptions,
+    made: &mut Correspondences,
+) -> Result<Vec<CurvePair>> {
     let twin_of = |f: &ControlCurve, others: &[ControlCurve]| {
         others.iter().find(|g| g.name == f.name).cloned()
     };
@@ -250,8 +269,25 @@ pub fn correspond_all(
     // symmetric features (see `CorrespondenceOptions::preferred_rotation`). When the boundary
     // matches its twin equally well in several ways, the features decide: the one that carries
     // them along with their surroundings wins (`feature_misfit`).
-    let boundary = correspond_candidates(curves[0].0, curves[0].1, &pins[0], tol, opts)
-        .map_err(|e| name_files(e, src_file, tgt_file))?;
+    // Every correspondence below goes through `made`.
+    let corresponded = |made: &mut Correspondences,
+                        s: &ControlCurve,
+                        t: &ControlCurve,
+                        anchors: &[(Point, Point)],
+                        o: &CorrespondenceOptions,
+                        reverse: Option<bool>| {
+        let ask = Ask {
+            src: s,
+            tgt: t,
+            anchors,
+            tol,
+            opts: o,
+            reverse,
+        };
+        made.get_or_make(ask, || correspond_with(s, t, anchors, tol, o, reverse))
+            .map_err(|e| name_files(e, src_file, tgt_file))
+    };
+    let boundary = corresponded(made, curves[0].0, curves[0].1, &pins[0], opts, None)?;
     let mut best: Option<(f64, Vec<CurvePair>)> = None;
     for b in boundary {
         let mut out: Vec<CurvePair> = Vec::with_capacity(curves.len());
@@ -263,8 +299,10 @@ pub fn correspond_all(
             if o.preferred_rotation.is_none() {
                 o.preferred_rotation = Some(local_turn(&out[0], &s.points));
             }
-            let named = |e| name_files(e, src_file, tgt_file);
-            let mut pair = correspond(s, t, p, tol, &o).map_err(named)?;
+            let mut pair = corresponded(made, s, t, p, &o, None)?
+                .into_iter()
+                .next()
+                .ok_or_else(|| Error::internal("correspondence: no candidate"))?;
             // An open feature whose direction its anchors do not fix runs the way that moves
             // with the surrounding boundary (`misfit_of`); the shape fit only breaks ties. The
             // shape alone is a poor guide when it hardly tells (a nearly straight stroke against
@@ -280,10 +318,8 @@ pub fn correspond_all(
                                 q0.distance(l) < q0.distance(first)
                             })
                         });
-                let other = correspond_with(s, t, p, tol, &o, Some(!shape_reversed))
-                    .map_err(named)?
-                    .swap_remove(0);
-                if misfit_of(&out[0], &other) < misfit_of(&out[0], &pair) - 1e-9 {
+                let other = corresponded(made, s, t, p, &o, Some(!shape_reversed))?.swap_remove(0);
+                if made.misfit(&out[0], &other) < made.misfit(&out[0], &pair) - 1e-9 {
                     pair = other;
                 }
             }
@@ -292,7 +328,7 @@ pub fn correspond_all(
         // Candidates come least-turning first; a later one must fit the features clearly better
         // (by 1 %), so that a tie between symmetric boundaries is not broken by rounding noise
         // into a quarter turn.
-        let misfit = feature_misfit(&out);
+        let misfit = feature_misfit(&out, made);
         if best
             .as_ref()
             .is_none_or(|(m, _)| misfit < *m * (1.0 - 0.01) - 1e-12)
@@ -310,14 +346,15 @@ pub fn correspond_all(
 /// size of those boundary vertices' target spread; averaged over features. A boundary
 /// correspondence that turns a symmetric shape the other way round than its features moves them
 /// across the shape, which no mapping can follow without folding.
-fn feature_misfit(pairs: &[CurvePair]) -> f64 {
+/// Each feature's misfit is taken from `made` when it holds it ([`Correspondences::misfit`]).
+fn feature_misfit(pairs: &[CurvePair], made: &mut Correspondences) -> f64 {
     let Some((boundary, features)) = pairs.split_first() else {
         return 0.0;
     };
     if features.is_empty() {
         return 0.0;
     }
-    let total: f64 = features.iter().map(|f| misfit_of(boundary, f)).sum();
+    let total: f64 = features.iter().map(|f| made.misfit(boundary, f)).sum();
     total / features.len() as f64
 }
 

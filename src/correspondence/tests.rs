@@ -284,7 +284,7 @@ fn a_half_turn_symmetric_boundary_turns_the_way_its_features_say() {
             assert!(half(a).distance(b) < 1e-9, "{}: {a} ↦ {b}", pair.id);
         }
     }
-    assert!(feature_misfit(&pairs) < 1e-9);
+    assert!(feature_misfit(&pairs, &mut Correspondences::default()) < 1e-9);
 }
 
 #[test]
@@ -673,4 +673,59 @@ fn a_feature_whose_twin_is_misspelt_names_it() {
         e.starts_with("b.svg: has no 'boundary' element, but a.svg has one"),
         "{e}"
     );
+}
+
+#[test]
+fn correspondences_kept_from_an_earlier_rung_give_what_making_them_anew_gives() {
+    // Automatic mode's ladder: the outline with three holes, then the same with the middle
+    // hole given up and the others renamed.
+    let tol = tol();
+    let opts = CorrespondenceOptions::default();
+    let b_src = curve("boundary", true, ellipse(64, 4.0, 3.0, 0.0, p(5., 5.)));
+    let b_tgt = curve("boundary", true, ellipse(64, 3.6, 3.2, 0.3, p(5.5, 5.)));
+    let hole = |k: usize, c: Point, r: f64| {
+        curve(
+            &format!("feature-hole-{k}"),
+            true,
+            ellipse(20, r, 0.6 * r, 0.0, c),
+        )
+    };
+    let src_holes = [(p(3., 5.), 0.7), (p(5., 6.), 0.5), (p(7., 5.), 0.6)];
+    let tgt_holes = [(p(3.5, 5.), 0.6), (p(5.5, 6.2), 0.5), (p(7.2, 4.8), 0.7)];
+    let rung = |keep: &[usize]| {
+        let side = |b: &ControlCurve, hs: &[(Point, f64)]| {
+            let features = keep
+                .iter()
+                .enumerate()
+                .map(|(k, &h)| hole(k, hs[h].0, hs[h].1))
+                .collect();
+            controls(b.clone(), features, Vec::new())
+        };
+        (side(&b_src, &src_holes), side(&b_tgt, &tgt_holes))
+    };
+    let made = &mut Correspondences::default();
+    let (s1, t1) = rung(&[0, 1, 2]);
+    let first = correspond_all_reusing("a.svg", &s1, "b.svg", &t1, &tol, &opts, made).unwrap();
+    assert_eq!(
+        first,
+        correspond_all("a.svg", &s1, "b.svg", &t1, &tol, &opts).unwrap()
+    );
+    let counts = made.counts();
+    assert!(counts.0 >= 4 && counts.1 >= 3, "{counts:?}");
+    let (s2, t2) = rung(&[0, 2]);
+    let second = correspond_all_reusing("a.svg", &s2, "b.svg", &t2, &tol, &opts, made).unwrap();
+    // Nothing made anew, and the same pairs as made from scratch, under the new names.
+    assert_eq!(made.counts(), counts);
+    assert_eq!(
+        second,
+        correspond_all("a.svg", &s2, "b.svg", &t2, &tol, &opts).unwrap()
+    );
+    let ids: Vec<&str> = second.iter().map(|c| c.id.as_str()).collect();
+    assert_eq!(ids, ["boundary", "feature-hole-0", "feature-hole-1"]);
+    // A hole moved by the smallest step is another curve: made anew.
+    let (mut s3, t3) = rung(&[0, 2]);
+    let q = &mut s3.features[1].points[3];
+    q.x = f64::from_bits(q.x.to_bits() + 1);
+    correspond_all_reusing("a.svg", &s3, "b.svg", &t3, &tol, &opts, made).unwrap();
+    assert!(made.counts().0 > counts.0);
 }

@@ -14,7 +14,7 @@
 //! source side and once from the target side and blending the two by `t` gives exactly the
 //! source features at 0 and the target features at 1.
 
-use crate::geometry::Point;
+use crate::geometry::{same_bits, Point};
 use crate::grid::GridFrame;
 use std::sync::Arc;
 
@@ -64,15 +64,6 @@ struct AttachedTo {
     boundary: Vec<Point>,
     /// Per feature curve: its vertices and their attachments.
     features: Vec<(Vec<Point>, Arc<[Attachment]>)>,
-}
-
-/// Whether two vertex lists are the same bit for bit (so that an attachment made for one is
-/// exactly the attachment of the other).
-fn same_bits(a: &[Point], b: &[Point]) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
 }
 
 impl Attachments {
