@@ -26,6 +26,10 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, Side};
 use std::sync::Arc;
 
+mod up_looking;
+
+use up_looking::UpLooking;
+
 const NONE: u32 = u32::MAX;
 
 /// A reusable harmonic-map solver for one triangulation and one set of fixed vertices: the
@@ -51,6 +55,8 @@ pub struct Harmonic {
     weights: Vec<f64>,
     /// The right-hand side, then the solution, in [`Symbolic::solve`]'s rows.
     rhs: Vec<Point>,
+    /// Scratch of the numeric factorization ([`Symbolic::factor`]).
+    scratch: Vec<f64>,
     /// The last [`Harmonic::solve`]'s metric, its final weights and factor: a composite-map
     /// step that is rejected is retried, shorter, from the same mesh, so the same matrix.
     last: Option<Box<Factored>>,
@@ -81,6 +87,8 @@ struct Symbolic {
     /// simplicial factor (solved here, unpermuted), the free index itself for a supernodal
     /// one (faer permutes).
     position: Vec<usize>,
+    /// A simplicial factor's rows' reaches, found once ([`UpLooking`]).
+    up_looking: Option<UpLooking>,
 }
 
 impl Symbolic {
@@ -133,11 +141,19 @@ impl Symbolic {
             SymbolicCholeskyRaw::Simplicial(_) => perm.arrays().1.to_vec(),
             SymbolicCholeskyRaw::Supernodal(_) => identity,
         };
+        let up_looking = match cholesky.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => UpLooking::new(
+                (permuted.col_ptr(), permuted.row_idx()),
+                (s.col_ptr(), s.row_idx()),
+            ),
+            SymbolicCholeskyRaw::Supernodal(_) => None,
+        };
         Ok((
             Symbolic {
                 cholesky,
                 permuted,
                 position,
+                up_looking,
             },
             place,
         ))
@@ -146,9 +162,14 @@ impl Symbolic {
     /// The numeric factor of the matrix with `values` laid out as [`Symbolic::permuted`] into
     /// `l` (its old contents and room reused), or `false` if the matrix is not numerically
     /// positive definite.
-    fn factor(&self, values: &[f64], l: &mut Vec<f64>) -> bool {
-        let a = SparseColMatRef::new(self.permuted.as_ref(), values);
+    fn factor(&self, values: &[f64], l: &mut Vec<f64>, scratch: &mut Vec<f64>) -> bool {
         let cholesky = &self.cholesky;
+        if let (SymbolicCholeskyRaw::Simplicial(s), Some(up)) = (cholesky.raw(), &self.up_looking) {
+            l.resize(cholesky.len_val(), 0.0);
+            let a = (self.permuted.col_ptr(), self.permuted.row_idx());
+            return up.factor(a, values, (s.col_ptr(), s.row_idx()), l, scratch);
+        }
+        let a = SparseColMatRef::new(self.permuted.as_ref(), values);
         l.clear();
         l.resize(cholesky.len_val(), 0.0);
         let par = faer::get_global_parallelism();
@@ -352,6 +373,7 @@ impl Harmonic {
             symbolic,
             values: vec![0.0; nnz],
             rhs: vec![Point::ZERO; nf],
+            scratch: Vec::new(),
             last: None,
         })
     }
@@ -479,7 +501,7 @@ impl Harmonic {
                 self.weights[e] = w;
             }
         }
-        symbolic.factor(&self.values, l)
+        symbolic.factor(&self.values, l, &mut self.scratch)
     }
 
     /// Assembles `−L_fb x_b` from the fixed entries of `out`, solves, and writes the free entries.
@@ -607,7 +629,10 @@ mod tests {
             let rhs = Mat::from_fn(n, 2, |i, k| ((i * 31 + k * 17) % 13) as f64 - 6.0);
             let (ours, place) = Symbolic::new(&pattern).unwrap();
             match ours.cholesky.raw() {
-                SymbolicCholeskyRaw::Simplicial(_) => kinds.0 = true,
+                SymbolicCholeskyRaw::Simplicial(_) => {
+                    kinds.0 = true;
+                    assert!(ours.up_looking.is_some(), "{side}²: factored row by row");
+                }
                 SymbolicCholeskyRaw::Supernodal(_) => kinds.1 = true,
             }
             let mut laid_out = vec![0.0; values.len()];
@@ -615,7 +640,7 @@ mod tests {
                 laid_out[at] = v;
             }
             let mut l = vec![f64::NAN; 3];
-            assert!(ours.factor(&laid_out, &mut l));
+            assert!(ours.factor(&laid_out, &mut l, &mut Vec::new()));
             let mut got = vec![Point::ZERO; n];
             for i in 0..n {
                 got[ours.position[i]] = Point::new(rhs[(i, 0)], rhs[(i, 1)]);
@@ -638,6 +663,53 @@ mod tests {
             (true, true),
             "both of faer's factor kinds are tested"
         );
+    }
+
+    /// The factor found row by row with the reaches walked once has the bits of faer's
+    /// simplicial factorization, on a real mesh's Laplacian (rows stored unsorted, as laid
+    /// out in the factor's ordering) at two metrics.
+    #[test]
+    fn the_up_looking_factor_has_faers_bits() {
+        let p = Point::new;
+        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 24);
+        let pairs = vec![
+            pair("boundary", true, sq),
+            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
+        ];
+        let (tri, fixed) = meshed(&pairs);
+        let n = tri.points.len();
+        let mut h = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
+        let symbolic = h.symbolic.clone().unwrap();
+        let SymbolicCholeskyRaw::Simplicial(s) = symbolic.cholesky.raw() else {
+            panic!("a mesh this small gets a simplicial factor");
+        };
+        assert!(symbolic.up_looking.is_some());
+        let bent: Vec<Point> = tri
+            .points
+            .iter()
+            .map(|&q| Point::new(q.x + 0.3 * (q.y * 0.4).sin(), q.y + 0.02 * q.x * q.x))
+            .collect();
+        for metric in [&tri.points, &bent] {
+            h.cotangent_weights(metric);
+            let mut ours = vec![f64::NAN; 5];
+            assert!(h.factor(&symbolic, None, &mut ours));
+            let mut faers = vec![0.0; symbolic.cholesky.len_val()];
+            let a = SparseColMatRef::new(symbolic.permuted.as_ref(), &h.values);
+            let scratch = symbolic
+                .cholesky
+                .factorize_numeric_llt_scratch::<f64>(faer::Par::Seq, Default::default());
+            let mut mem = MemBuffer::new(scratch);
+            simplicial::factorize_simplicial_numeric_llt(
+                &mut faers,
+                a,
+                Default::default(),
+                s,
+                MemStack::new(&mut mem),
+            )
+            .unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&ours), bits(&faers));
+        }
     }
 
     /// The source triangulation of `pairs` and its curve vertices (the fixed ones).
