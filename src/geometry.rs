@@ -30,8 +30,21 @@ pub(crate) fn inverted_or_sliver(a: Point, b: Point, c: Point) -> bool {
         .length_squared()
         .max((c - b).length_squared())
         .max((a - c).length_squared());
-    orient2d(a, b, c) <= 0.0 || (b - a).perp_dot(c - a) <= 1e-13 * longest
+    let doubled_area = (b - a).perp_dot(c - a);
+    let thin = 1e-13 * longest;
+    // Above the sliver bound (with no underflow in it), the floating-point area is about a
+    // hundred times its rounding error (a few ulps of `longest`), so the exact sign is positive
+    // without the adaptive predicate: the answer is the one below, found faster (the
+    // composite mapping tests every triangle at every step).
+    if doubled_area > thin && longest > MIN_NORMAL_PRODUCT && longest.is_finite() {
+        return false;
+    }
+    orient2d(a, b, c) <= 0.0 || doubled_area <= thin
 }
+
+/// Below this squared length, products of coordinate differences may be subnormal and their
+/// rounding errors no longer relative ([`inverted_or_sliver`] then asks the exact predicate).
+const MIN_NORMAL_PRODUCT: f64 = 1e-200;
 
 /// Signed area of triangle `abc` (plain floating point, positive counter-clockwise).
 pub fn triangle_area(a: Point, b: Point, c: Point) -> f64 {
@@ -298,6 +311,63 @@ mod tests {
         // A T: the stem's end on the bar.
         let t = segment_crossing(p(0.0, 0.0), p(10.0, 0.0), p(4.0, 5.0), p(4.0, 0.0));
         assert_eq!(t, p(4.0, 0.0));
+    }
+
+    /// The test as first written: the exact predicate, then the sliver bound.
+    fn inverted_or_sliver_by_both_tests(a: Point, b: Point, c: Point) -> bool {
+        let longest = (b - a)
+            .length_squared()
+            .max((c - b).length_squared())
+            .max((a - c).length_squared());
+        orient2d(a, b, c) <= 0.0 || (b - a).perp_dot(c - a) <= 1e-13 * longest
+    }
+
+    proptest::proptest! {
+        /// Skipping the exact predicate above the sliver bound gives the same answers: on
+        /// triangles at every scale (down to where products underflow, up to where they
+        /// overflow), near the bound, collinear, flat, repeated or with a NaN.
+        #[test]
+        fn the_quick_answer_is_the_exact_tests_answer(
+            pts in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 3),
+            scale in proptest::sample::select(vec![1.0, 1e-160, 1e-110, 1e-6, 1e5, 1e150, 1e160]),
+            offset in proptest::sample::select(vec![0.0, 1.0, -3e3, 1e12]),
+            squash in proptest::sample::select(vec![1.0, 1e-12, 1e-13, 3e-14, 1e-16, 0.0]),
+            special in 0usize..8,
+        ) {
+            let mut t: Vec<Point> = pts
+                .iter()
+                .map(|&(x, y)| Point::new(offset + scale * x, offset + scale * squash * y))
+                .collect();
+            match special {
+                0 => t[2] = t[0],
+                1 => t[2] = t[0] + (t[1] - t[0]) * 0.37,
+                2 => t[1].x = f64::NAN,
+                _ => {}
+            }
+            proptest::prop_assert_eq!(
+                inverted_or_sliver(t[0], t[1], t[2]),
+                inverted_or_sliver_by_both_tests(t[0], t[1], t[2])
+            );
+        }
+    }
+
+    #[test]
+    fn near_the_sliver_bound_both_answers_agree() {
+        // Heights around 1e-13 of the base (the bound, for twice the area over the longest
+        // edge squared), a step of a few ulps apart.
+        for k in -40..40 {
+            let h = 1e-13 * (1.0 + k as f64 * 1e-15) * 2.0;
+            for (a, b, c) in [
+                (p(0., 0.), p(2., 0.), p(1., h)),
+                (p(0., 0.), p(2., 0.), p(1., -h)),
+                (p(5e3, 5e3), p(5e3 + 2.0, 5e3), p(5e3 + 1.0, 5e3 + h)),
+            ] {
+                assert_eq!(
+                    inverted_or_sliver(a, b, c),
+                    inverted_or_sliver_by_both_tests(a, b, c)
+                );
+            }
+        }
     }
 
     #[test]
