@@ -291,9 +291,9 @@ fn walk(
 ) -> std::result::Result<Vec<Point>, Stop> {
     let mut current = tri.points.clone();
     let mut next = current.clone();
-    // No triangle inverted or a sliver (a bad triangle includes every inverted one, so this
-    // is also the exact orientation test).
-    let valid = |v: &[Point]| !tri.triangles.iter().any(|t| is_bad(t, v));
+    // The first triangle inverted or a sliver, if any (a bad triangle includes every inverted
+    // one, so this is also the exact orientation test).
+    let first_bad = |v: &[Point]| tri.triangles.iter().position(|t| is_bad(t, v));
     let mut curves: Vec<Vec<Point>> = Vec::new();
     let min_step = opts.min_step.max(f64::EPSILON);
     let (mut t, mut maps) = (0.0f64, 0usize);
@@ -333,12 +333,14 @@ fn walk(
                 .harmonic
                 .solve(&current, &mut next)
                 .map_err(Stop::Broken)?;
-            if valid(&next) {
-                (true, true)
-            } else {
-                // `untangle` returns true only when no triangle is bad: `valid` would hold.
-                let untangled = solver.untangler.untangle(&tri.triangles, &mut next, is_bad);
-                (untangled, false)
+            match first_bad(&next) {
+                None => (true, true),
+                Some(f) => {
+                    // `untangle` returns true only when no triangle is bad: none would be found.
+                    let untangler = solver.untangler;
+                    let untangled = untangler.untangle(&tri.triangles, &mut next, is_bad, f);
+                    (untangled, false)
+                }
             }
         };
         if ok {

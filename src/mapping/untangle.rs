@@ -94,7 +94,8 @@ impl Untangler {
     }
 
     /// Moves free vertices of the triangles for which `bad` holds until none does or the sweeps
-    /// run out; returns whether none does. `triangles` are those the untangler was made for.
+    /// run out; returns whether none does. `triangles` are those the untangler was made for;
+    /// those before `first_bad` are known not to be bad (the caller's test stopped there).
     /// A tangle that could not be cleared in the sweeps left even at [`PACE`] times its best
     /// sweep's pace is given up at once (issue 16: the untanglings that fail took most of the
     /// composite walks' time, all twelve sweeps each, over tangles that mostly grew; on two
@@ -104,6 +105,7 @@ impl Untangler {
         triangles: &[[u32; 3]],
         points: &mut [Point],
         bad: impl Fn(&[u32; 3], &[Point]) -> bool,
+        first_bad: usize,
     ) -> bool {
         let mut active: Vec<u32> = Vec::new();
         let mut stuck: Vec<u32> = Vec::new();
@@ -111,7 +113,7 @@ impl Untangler {
         let mut marks = Vec::new();
         // The triangles for which `bad` holds, kept up to date: only a moved vertex's
         // triangles can change.
-        let mut tangled: Vec<u32> = (0..triangles.len() as u32)
+        let mut tangled: Vec<u32> = (first_bad.min(triangles.len()) as u32..triangles.len() as u32)
             .filter(|&f| bad(&triangles[f as usize], points))
             .collect();
         // The most triangles one sweep has freed so far (at least one).
@@ -802,10 +804,20 @@ mod tests {
         let mut pts = vec![p(0., 0.), p(2., 0.), p(2., 2.), p(0., 2.), p(3., 1.)];
         assert!(count_inverted(&tris, &pts) > 0);
         let u = Untangler::new(&tris, &fixed);
-        assert!(u.untangle(&tris, &mut pts, folded));
+        let start = pts.clone();
+        assert!(u.untangle(&tris, &mut pts, folded, 0));
         assert_eq!(count_inverted(&tris, &pts), 0);
         // Max-min area of a square's fan: the centre.
         assert!(pts[4].distance(p(1., 1.)) < 1e-9);
+        // Told where the first folded triangle is, it moves the vertex to the same bits.
+        let first = tris.iter().position(|t| folded(t, &start)).unwrap();
+        assert!(first > 0);
+        let mut again = start;
+        assert!(u.untangle(&tris, &mut again, folded, first));
+        assert_eq!(
+            again[4].to_array().map(f64::to_bits),
+            pts[4].to_array().map(f64::to_bits)
+        );
     }
 
     #[test]
@@ -815,7 +827,7 @@ mod tests {
         let mut pts = vec![p(0., 0.), p(2., 0.), p(0., 2.), p(2., 2.), p(1., 1.)];
         let before = pts.clone();
         let u = Untangler::new(&tris, &fixed);
-        assert!(!u.untangle(&tris, &mut pts, folded));
+        assert!(!u.untangle(&tris, &mut pts, folded, 0));
         assert_eq!(&pts[..4], &before[..4]);
     }
 
@@ -842,11 +854,11 @@ mod tests {
             tests.set(tests.get() + 1);
             folded(t, pts)
         };
-        assert!(!u.untangle(&tris, &mut hopeless, counted));
+        assert!(!u.untangle(&tris, &mut hopeless, counted, 0));
         // The first test of every triangle, then one sweep's (each star's four triangles):
         // twelve sweeps would test them twelve times.
         assert_eq!(tests.get(), 2 * tris.len());
-        assert!(u.untangle(&tris, &mut freeable, folded));
+        assert!(u.untangle(&tris, &mut freeable, folded, 0));
         assert_eq!(count_inverted(&tris, &freeable), 0);
     }
 
@@ -904,7 +916,7 @@ mod tests {
         pts[id(3, 2) as usize] = p(0.8, 1.1);
         assert!(count_inverted(&tris, &pts) > 0);
         let u = Untangler::new(&tris, &fixed);
-        assert!(u.untangle(&tris, &mut pts, folded));
+        assert!(u.untangle(&tris, &mut pts, folded, 0));
         assert_eq!(count_inverted(&tris, &pts), 0);
     }
 }
