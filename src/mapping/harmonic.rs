@@ -670,13 +670,7 @@ mod tests {
     /// out in the factor's ordering) at two metrics.
     #[test]
     fn the_up_looking_factor_has_faers_bits() {
-        let p = Point::new;
-        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 24);
-        let pairs = vec![
-            pair("boundary", true, sq),
-            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
-        ];
-        let (tri, fixed) = meshed(&pairs);
+        let (tri, fixed) = square_with_a_ring(24);
         let n = tri.points.len();
         let mut h = Harmonic::new(&tri.triangles, n, &fixed).unwrap();
         let symbolic = h.symbolic.clone().unwrap();
@@ -712,6 +706,17 @@ mod tests {
         }
     }
 
+    /// A 10 × 10 square (each side in `steps` edges) with a circular feature curve: the
+    /// triangulation and its fixed vertices.
+    fn square_with_a_ring(steps: usize) -> (crate::triangulation::Triangulation, Vec<bool>) {
+        let p = Point::new;
+        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], steps);
+        meshed(&[
+            pair("boundary", true, sq),
+            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
+        ])
+    }
+
     /// The source triangulation of `pairs` and its curve vertices (the fixed ones).
     fn meshed(
         pairs: &[crate::correspondence::CurvePair],
@@ -732,12 +737,7 @@ mod tests {
     #[test]
     fn reproduces_an_affine_map_exactly() {
         let p = Point::new;
-        let sq = subdivided(&[p(0., 0.), p(10., 0.), p(10., 10.), p(0., 10.)], 20);
-        let pairs = vec![
-            pair("boundary", true, sq),
-            pair("feature-o", true, circle(p(6., 5.), 2., 24)),
-        ];
-        let (tri, fixed) = meshed(&pairs);
+        let (tri, fixed) = square_with_a_ring(20);
         let n = tri.points.len();
         assert!(fixed.iter().filter(|f| !**f).count() > 50);
         let affine =
