@@ -399,10 +399,12 @@ impl Harmonic {
     /// bit) and other fixed positions only solves.
     pub fn solve(&mut self, metric: &[Point], out: &mut [Point]) -> Result<()> {
         let mut spare = None;
-        if let Some(last) = self.last.take() {
+        if let Some(mut last) = self.last.take() {
             if same_metric(&last.metric, metric) && out.len() == metric.len() {
-                self.weights.copy_from_slice(&last.weights);
+                // `weights` is the solve's scratch: the kept weights are lent to it, not copied.
+                std::mem::swap(&mut self.weights, &mut last.weights);
                 let done = self.finish(&last.llt, out);
+                std::mem::swap(&mut self.weights, &mut last.weights);
                 self.last = Some(last);
                 return done;
             }
@@ -430,7 +432,8 @@ impl Harmonic {
         let done = self.finish(&kept.llt, out);
         kept.metric.clear();
         kept.metric.extend_from_slice(metric);
-        kept.weights.clone_from(&self.weights);
+        // Kept by exchange: the next metric's weights are computed afresh into the scratch.
+        std::mem::swap(&mut kept.weights, &mut self.weights);
         self.last = Some(kept);
         done
     }
@@ -464,7 +467,9 @@ impl Harmonic {
 
     /// The cotangent weight of every edge in the metric `metric`, into `self.weights`.
     fn cotangent_weights(&mut self, metric: &[Point]) {
-        self.weights.fill(0.0);
+        // Zeroed at the edges' count: a solve may have exchanged the vector with a kept one.
+        self.weights.clear();
+        self.weights.resize(self.edges.len(), 0.0);
         for (t, opp) in self.triangles.iter().zip(&self.opposite) {
             let p = t.map(|v| metric[v as usize]);
             let twice_area = (p[1] - p[0]).perp_dot(p[2] - p[0]).abs();
