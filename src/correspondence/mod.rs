@@ -299,10 +299,7 @@ pub(crate) fn correspond_all_reusing(
             if o.preferred_rotation.is_none() {
                 o.preferred_rotation = Some(local_turn(&out[0], &s.points));
             }
-            let mut pair = corresponded(made, s, t, p, &o, None)?
-                .into_iter()
-                .next()
-                .ok_or_else(|| Error::internal("correspondence: no candidate"))?;
+            let mut pair = first_candidate(corresponded(made, s, t, p, &o, None)?)?;
             // An open feature whose direction its anchors do not fix runs the way that moves
             // with the surrounding boundary (`misfit_of`); the shape fit only breaks ties. The
             // shape alone is a poor guide when it hardly tells (a nearly straight stroke against
@@ -318,7 +315,8 @@ pub(crate) fn correspond_all_reusing(
                                 q0.distance(l) < q0.distance(first)
                             })
                         });
-                let other = corresponded(made, s, t, p, &o, Some(!shape_reversed))?.swap_remove(0);
+                let other =
+                    first_candidate(corresponded(made, s, t, p, &o, Some(!shape_reversed))?)?;
                 if made.misfit(&out[0], &other) < made.misfit(&out[0], &pair) - 1e-9 {
                     pair = other;
                 }
@@ -502,11 +500,15 @@ pub fn correspond(
     tol: &Tolerances,
     opts: &CorrespondenceOptions,
 ) -> Result<CurvePair> {
-    let mut all = correspond_candidates(src, tgt, anchors, tol, opts)?;
-    if all.is_empty() {
-        return Err(Error::internal("correspondence: no candidate"));
-    }
-    Ok(all.swap_remove(0))
+    first_candidate(correspond_candidates(src, tgt, anchors, tol, opts)?)
+}
+
+/// The first (least turning) of a curve pair's candidate correspondences; an internal error,
+/// not a panic, when there is none.
+fn first_candidate(all: Vec<CurvePair>) -> Result<CurvePair> {
+    all.into_iter()
+        .next()
+        .ok_or_else(|| Error::internal("correspondence: no candidate"))
 }
 
 /// [`correspond`] with every equally good correspondence of a closed curve without anchors whose
