@@ -23,7 +23,7 @@
 //! exactly compatible with the source (t = 0) or the target (t = 1), the solve reproduces that
 //! shape up to a translation and the centroid rule removes the translation.
 
-use super::factor::{Factor, Row, MAX_LANES};
+use super::factor::{Factor, LaneRow, Row};
 use super::simd::vectorized;
 use crate::error::Result;
 use crate::geometry::Point;
@@ -298,7 +298,7 @@ pub(crate) struct SolveScratch {
     sums: Vec<Point>,
     /// Right-hand sides of frames solved together ([`FactoredSystem::solve_lanes`]), row by
     /// row; empty until the first batch.
-    lanes: Vec<[Point; MAX_LANES]>,
+    lanes: Vec<LaneRow>,
 }
 
 impl FactoredSystem {
@@ -368,16 +368,14 @@ impl FactoredSystem {
         self.place(&mut s.rhs, 0, &mut s.sums, centroids, out);
     }
 
-    /// The rows of a batch of `K ≤` [`MAX_LANES`] right-hand sides, one per frame, with lanes
-    /// `0..K` zeroed for [`FactoredSystem::solve_lanes`]: row `r` of frame `k` is `rows[r][k]`
+    /// The rows of a batch of `K ≤` [`MAX_LANES`](super::factor::MAX_LANES) right-hand sides,
+    /// one per frame, with lanes `0..K` zeroed for [`FactoredSystem::solve_lanes`]: row `r` of
+    /// frame `k` is `rows[r].0[k]`
     /// (rows as in [`FactoredSystem::rhs_index`]).
-    pub(crate) fn lanes<'s, const K: usize>(
-        &self,
-        s: &'s mut SolveScratch,
-    ) -> &'s mut [[Point; MAX_LANES]] {
-        s.lanes.resize(s.rhs.len(), [Point::ZERO; MAX_LANES]);
+    pub(crate) fn lanes<'s, const K: usize>(&self, s: &'s mut SolveScratch) -> &'s mut [LaneRow] {
+        s.lanes.resize(s.rhs.len(), LaneRow::ZERO);
         for row in &mut s.lanes {
-            row[..K].fill(Point::ZERO);
+            row.0[..K].fill(Point::ZERO);
         }
         &mut s.lanes
     }
