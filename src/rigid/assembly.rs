@@ -202,10 +202,18 @@ impl SystemBuilder {
             }
             Some(factor)
         };
+        // Each row's vertex, so that placing reads the solution in its own order.
+        let mut vertex_of_row = vec![0u32; n_red];
+        for (v, &r) in reduced.iter().enumerate() {
+            if (r as usize) < n_red {
+                vertex_of_row[r as usize] = v as u32;
+            }
+        }
         Ok(FactoredSystem {
             n,
             n_red,
             reduced,
+            vertex_of_row,
             comp,
             size,
             comp_anchored,
@@ -278,6 +286,8 @@ pub(crate) struct FactoredSystem {
     n_red: usize,
     /// Row of each vertex in the reduced system; pinned vertices map to the dummy row `n_red`.
     reduced: Vec<u32>,
+    /// The vertex of each row of the reduced system (`reduced`'s inverse).
+    vertex_of_row: Vec<u32>,
     /// Connected component of each vertex.
     comp: Vec<u32>,
     /// Number of vertices of each component.
@@ -365,7 +375,7 @@ impl FactoredSystem {
         if let Some(f) = &self.factor {
             f.solve_in_place(&mut s.rhs);
         }
-        self.place(&mut s.rhs, 0, &mut s.sums, centroids, out);
+        self.place(&s.rhs, 0, &mut s.sums, centroids, out);
     }
 
     /// The rows of a batch of `K ≤` [`MAX_LANES`](super::factor::MAX_LANES) right-hand sides,
@@ -396,7 +406,7 @@ impl FactoredSystem {
         centroids: &[Point],
         out: &mut [Point],
     ) {
-        self.place(&mut s.lanes, lane, &mut s.sums, centroids, out);
+        self.place(&s.lanes, lane, &mut s.sums, centroids, out);
     }
 
     /// Writes lane `lane` of the solved `rows` into `out`, every vertex, translating each free
@@ -404,7 +414,7 @@ impl FactoredSystem {
     /// scratch, one per component. Runs in the widest instructions at hand (`simd.rs`).
     fn place<R: Row>(
         &self,
-        rows: &mut [R],
+        rows: &[R],
         lane: usize,
         sums: &mut [Point],
         centroids: &[Point],
@@ -420,21 +430,27 @@ impl FactoredSystem {
     #[inline(always)]
     fn place_kernel<R: Row>(
         &self,
-        rows: &mut [R],
+        rows: &[R],
         lane: usize,
         sums: &mut [Point],
         centroids: &[Point],
         out: &mut [Point],
     ) {
         debug_assert_eq!(out.len(), self.n);
-        // The dummy row holds the pinned vertices: at the origin before translation.
-        *rows[self.n_red].lane_mut(lane) = Point::ZERO;
+        // The solution is read in its rows' order and written to the vertices: a read from
+        // a scattered row waits for it, where a scattered write does not. Pinned vertices are
+        // at the origin before translation.
+        for &p in &self.pins {
+            out[p as usize] = Point::ZERO;
+        }
+        for (row, &v) in rows.iter().zip(&self.vertex_of_row) {
+            out[v as usize] = row.lane(lane);
+        }
         sums.fill(Point::ZERO);
         // Components are mostly runs of consecutive vertices: sum a run in a register, not
         // through memory one vertex after the other.
         let (mut run, mut sum) = (u32::MAX, Point::ZERO);
-        for ((o, &r), &c) in out.iter_mut().zip(&self.reduced).zip(&self.comp) {
-            *o = rows[r as usize].lane(lane);
+        for (o, &c) in out.iter().zip(&self.comp) {
             if c != run {
                 if run != u32::MAX {
                     sums[run as usize] += sum;
