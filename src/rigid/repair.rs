@@ -226,6 +226,7 @@ impl FoldRepair {
     fn passes(&self, out: &mut [Point], bad: &mut Vec<u32>, curves: bool) {
         let may_move = |v: u32| curves || self.free[v as usize];
         let mut reach: Vec<u32> = Vec::new();
+        let mut scratch = Scratch::default();
         for _ in 0..PASSES {
             if bad.is_empty() {
                 break;
@@ -242,7 +243,7 @@ impl FoldRepair {
             let mut moved = false;
             for &v in &todo {
                 let room = reach.binary_search(&v).is_ok();
-                match self.relax(v as usize, out, room) {
+                match self.relax(v as usize, out, room, &mut scratch) {
                     Relax::Moved => moved = true,
                     Relax::Stuck => stuck.push(v),
                     Relax::Kept => {}
@@ -275,18 +276,23 @@ impl FoldRepair {
     /// moves part of the way to its kernel's centroid instead, which opens its neighbours'
     /// kernels. When the kernel is empty, the best of a few local candidates (fewest inverted
     /// triangles, then the largest smallest area) is taken and `Stuck` returned.
-    fn relax(&self, v: usize, out: &mut [Point], room: bool) -> Relax {
+    fn relax(&self, v: usize, out: &mut [Point], room: bool, scratch: &mut Scratch) -> Relax {
         if self.ring[v].is_empty() {
             return Relax::Kept;
         }
-        let sides: Vec<(Point, Point)> = self.star[v]
-            .iter()
-            .map(|&g| {
-                let t = self.triangles[g as usize];
-                let k = t.iter().position(|&x| x as usize == v).unwrap_or(0);
-                (out[t[(k + 1) % 3] as usize], out[t[(k + 2) % 3] as usize])
-            })
-            .collect();
+        let Scratch {
+            sides,
+            lines,
+            poly,
+            next,
+        } = scratch;
+        sides.clear();
+        sides.extend(self.star[v].iter().map(|&g| {
+            let t = self.triangles[g as usize];
+            let k = t.iter().position(|&x| x as usize == v).unwrap_or(0);
+            (out[t[(k + 1) % 3] as usize], out[t[(k + 2) % 3] as usize])
+        }));
+        let sides = &sides[..];
         let old = out[v];
         let inverted = |p: Point| {
             sides
@@ -299,8 +305,8 @@ impl FoldRepair {
             if !room {
                 return Relax::Kept;
             }
-            if let Some(c) = kernel_centroid(&sides) {
-                let p = toward_kernel(&sides, old, c);
+            if let Some(c) = kernel_centroid(sides, poly, next) {
+                let p = toward_kernel(sides, old, c);
                 if p != old && inverted(p) == 0 {
                     out[v] = p;
                     return Relax::Moved;
@@ -309,7 +315,7 @@ impl FoldRepair {
             return Relax::Kept;
         }
         for height in [0.1, 0.02, 1e-6] {
-            if let Some(p) = nearest_seeing(&sides, old, height) {
+            if let Some(p) = nearest_seeing(sides, old, height, lines) {
                 if inverted(p) == 0 {
                     out[v] = p;
                     return Relax::Moved;
@@ -327,14 +333,13 @@ impl FoldRepair {
         };
         let mean = self.ring[v].iter().map(|&w| out[w as usize]).sum::<Point>()
             / self.ring[v].len() as f64;
-        let mut candidates: Vec<Point> = [1.0, 0.5, 0.25, 0.75, 0.1]
+        let candidates = [1.0, 0.5, 0.25, 0.75, 0.1]
             .iter()
             .map(|&s| old + (mean - old) * s)
-            .collect();
-        for &(a, b) in &sides {
-            let inward = Point::new(-(b - a).y, (b - a).x);
-            candidates.push((a + b) * 0.5 + inward * 0.3);
-        }
+            .chain(sides.iter().map(|&(a, b)| {
+                let inward = Point::new(-(b - a).y, (b - a).x);
+                (a + b) * 0.5 + inward * 0.3
+            }));
         let better = |x: (usize, f64), y: (usize, f64)| x.0 < y.0 || (x.0 == y.0 && x.1 > y.1);
         let mut best = (score(old), old);
         for p in candidates {
@@ -352,16 +357,20 @@ impl FoldRepair {
 /// at least `height · |b − a|`, or `None` when no point does. The feasible set is convex, so
 /// the nearest point is `from` itself, its projection onto one side's line, or a corner where
 /// two lines meet: all are tried, each checked against every side.
-fn nearest_seeing(sides: &[(Point, Point)], from: Point, height: f64) -> Option<Point> {
+fn nearest_seeing(
+    sides: &[(Point, Point)],
+    from: Point,
+    height: f64,
+    lines: &mut Vec<(Point, f64)>,
+) -> Option<Point> {
     // Side k as n·p ≥ c, n the inward normal.
-    let lines: Vec<(Point, f64)> = sides
-        .iter()
-        .map(|&(a, b)| {
-            let d = b - a;
-            let n = Point::new(-d.y, d.x);
-            (n, n.dot(a) + height * d.length_squared())
-        })
-        .collect();
+    lines.clear();
+    lines.extend(sides.iter().map(|&(a, b)| {
+        let d = b - a;
+        let n = Point::new(-d.y, d.x);
+        (n, n.dot(a) + height * d.length_squared())
+    }));
+    let lines = &lines[..];
     let feasible = |p: Point| {
         p.is_finite()
             && lines
@@ -380,7 +389,7 @@ fn nearest_seeing(sides: &[(Point, Point)], from: Point, height: f64) -> Option<
             }
         }
     };
-    for &(n, c) in &lines {
+    for &(n, c) in lines {
         let nn = n.length_squared();
         if nn > 0.0 {
             offer(from + n * ((c - n.dot(from)) / nn));
@@ -443,6 +452,16 @@ fn mean_value_weights(
     }
 }
 
+/// Buffers [`FoldRepair::relax`] reuses from one vertex to the next: the star's opposite
+/// sides, their lines and the kernel's clipped polygon.
+#[derive(Debug, Default)]
+struct Scratch {
+    sides: Vec<(Point, Point)>,
+    lines: Vec<(Point, f64)>,
+    poly: Vec<Point>,
+    next: Vec<Point>,
+}
+
 /// What [`FoldRepair::relax`] did to a vertex.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Relax {
@@ -456,8 +475,12 @@ enum Relax {
 
 /// The centroid of the kernel of a star: the intersection of the open half-planes to the left
 /// of each directed side `a → b`, clipped from a box around the sides; `None` when it is empty
-/// or has no area.
-fn kernel_centroid(sides: &[(Point, Point)]) -> Option<Point> {
+/// or has no area. `poly` and `next` are scratch.
+fn kernel_centroid(
+    sides: &[(Point, Point)],
+    poly: &mut Vec<Point>,
+    next: &mut Vec<Point>,
+) -> Option<Point> {
     let (mut lo, mut hi) = (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY));
     for &(a, b) in sides {
         lo = lo.min(a).min(b);
@@ -468,11 +491,12 @@ fn kernel_centroid(sides: &[(Point, Point)]) -> Option<Point> {
         return None;
     }
     let (lo, hi) = (lo - Point::splat(pad), hi + Point::splat(pad));
-    let mut poly = vec![lo, Point::new(hi.x, lo.y), hi, Point::new(lo.x, hi.y)];
+    poly.clear();
+    poly.extend([lo, Point::new(hi.x, lo.y), hi, Point::new(lo.x, hi.y)]);
     for &(a, b) in sides {
         let d = b - a;
         let side = |p: Point| d.perp_dot(p - a);
-        let mut next = Vec::with_capacity(poly.len() + 1);
+        next.clear();
         for k in 0..poly.len() {
             let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
             let (sp, sq) = (side(p), side(q));
@@ -483,16 +507,16 @@ fn kernel_centroid(sides: &[(Point, Point)]) -> Option<Point> {
                 next.push(p + (q - p) * (sp / (sp - sq)));
             }
         }
-        poly = next;
+        std::mem::swap(poly, next);
         if poly.len() < 3 {
             return None;
         }
     }
-    let area = crate::geometry::polygon_area(&poly);
+    let area = crate::geometry::polygon_area(poly);
     if area.is_nan() || area <= 0.0 {
         return None;
     }
-    Some(crate::geometry::polygon_centroid(&poly))
+    Some(crate::geometry::polygon_centroid(poly))
 }
 
 /// The point on the segment from `from` to `c` (a point of the kernel) nearest `from` at which
