@@ -381,12 +381,11 @@ fn nearest_seeing(
         return Some(from);
     }
     let mut best: Option<(f64, Point)> = None;
+    // Nearer than the best so far first: the feasibility test reads every line.
     let mut offer = |p: Point| {
-        if feasible(p) {
-            let d = p.distance_squared(from);
-            if best.is_none_or(|(e, _)| d < e) {
-                best = Some((d, p));
-            }
+        let d = p.distance_squared(from);
+        if best.is_none_or(|(e, _)| d < e) && feasible(p) {
+            best = Some((d, p));
         }
     };
     for &(n, c) in lines {
