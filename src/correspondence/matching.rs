@@ -32,30 +32,47 @@ pub(crate) struct Mark {
 /// where the shapes' turn puts it costs as much as a fifth of the outline's length.
 const TURN_WEIGHT: f64 = 0.4;
 
-/// The cost of pairing `a` with `b`, or `None` when they may not be paired.
-fn pair_cost(a: Mark, b: Mark, opts: &CorrespondenceOptions) -> Option<f64> {
-    if a.turning * b.turning <= 0.0 {
+/// The parts of pairing a point of turning `ta` (direction `ba` from its centroid) with one of
+/// turning `tb` (direction `bb`) that do not depend on where a span starts: the turning term and
+/// the turn term of [`pair_cost`], or `None` when they may not be paired.
+fn pair_terms(
+    (ta, ba): (f64, Option<f64>),
+    (tb, bb): (f64, Option<f64>),
+    opts: &CorrespondenceOptions,
+) -> Option<(f64, f64)> {
+    if ta * tb <= 0.0 {
         return None;
     }
     let (lo, hi) = {
-        let (x, y) = (a.turning.abs(), b.turning.abs());
+        let (x, y) = (ta.abs(), tb.abs());
         (x.min(y), x.max(y))
     };
     if hi > lo * opts.max_turning_ratio.max(1.0) {
         return None;
     }
-    let turn = match (a.bearing, b.bearing, opts.outline_turn) {
+    let turn = match (ba, bb, opts.outline_turn) {
         (Some(x), Some(y), Some(th)) => {
             let d = y - x - th;
             TURN_WEIGHT * d.sin().atan2(d.cos()).abs() / std::f64::consts::PI
         }
         _ => 0.0,
     };
-    Some(
-        (a.u - b.u).abs()
-            + opts.angle_weight * (a.turning - b.turning).abs() / std::f64::consts::PI
-            + turn,
-    )
+    Some((
+        opts.angle_weight * (ta - tb).abs() / std::f64::consts::PI,
+        turn,
+    ))
+}
+
+/// A pair's cost from its positions in the span and its [`pair_terms`], added in one order
+/// everywhere so that a cost looked up from a table has the bits of one computed afresh.
+fn cost_of(ua: f64, ub: f64, (turning, turn): (f64, f64)) -> f64 {
+    (ua - ub).abs() + turning + turn
+}
+
+/// The cost of pairing `a` with `b`, or `None` when they may not be paired.
+fn pair_cost(a: Mark, b: Mark, opts: &CorrespondenceOptions) -> Option<f64> {
+    let terms = pair_terms((a.turning, a.bearing), (b.turning, b.bearing), opts)?;
+    Some(cost_of(a.u, b.u, terms))
 }
 
 /// The least-cost order-preserving match between `src` and `tgt` (each sorted by `u`): its total
@@ -65,8 +82,19 @@ pub(crate) fn associate_span(
     tgt: &[Mark],
     opts: &CorrespondenceOptions,
 ) -> (f64, Vec<(usize, usize)>) {
-    let (n, m) = (src.len(), tgt.len());
-    let skip = opts.skip_cost;
+    span_by(src.len(), tgt.len(), opts.skip_cost, |a, b| {
+        pair_cost(src[a], tgt[b], opts)
+    })
+}
+
+/// [`associate_span`] over `n` source and `m` target points whose pair costs `pair(a, b)` gives
+/// (`None` where they may not be paired).
+fn span_by(
+    n: usize,
+    m: usize,
+    skip: f64,
+    pair: impl Fn(usize, usize) -> Option<f64>,
+) -> (f64, Vec<(usize, usize)>) {
     let w = m + 1;
     // cost[a*w + b]: best cost of matching src[..a] with tgt[..b]; step records the move.
     let mut cost = vec![0.0; (n + 1) * w];
@@ -79,7 +107,7 @@ pub(crate) fn associate_span(
             let mut best = f64::INFINITY;
             let mut mv = 0u8;
             if a > 0 && b > 0 {
-                if let Some(c) = pair_cost(src[a - 1], tgt[b - 1], opts) {
+                if let Some(c) = pair(a - 1, b - 1) {
                     best = cost[(a - 1) * w + b - 1] + c;
                     mv = 1;
                 }
@@ -141,28 +169,34 @@ pub(crate) fn associate_cyclic(
             })
             .collect()
     };
+    // What a pair costs besides its positions depends on the two points only, not on the
+    // start: found once per pair here rather than once per start and pair (the turn term's
+    // trigonometry was most of a cyclic match's time).
+    let terms: Vec<Option<(f64, f64)>> = (0..n)
+        .flat_map(|p| (0..m).map(move |q| (p, q)))
+        .map(|(p, q)| {
+            pair_terms(
+                (src[p].turning, bearings.0.get(p).copied()),
+                (tgt[q].turning, bearings.1.get(q).copied()),
+                opts,
+            )
+        })
+        .collect();
     let mut found: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
     for i in 0..n {
         let a = marks(src, src_len, i, bearings.0);
-        let head = Mark {
-            u: 0.0,
-            turning: src[i].turning,
-            bearing: bearings.0.get(i).copied(),
-        };
+        // Span position x is source point (i + 1 + x) mod n, and likewise for the target.
+        let rows: Vec<usize> = (1..n).map(|k| (i + k) % n * m).collect();
         for j in 0..m {
-            let Some(c0) = pair_cost(
-                head,
-                Mark {
-                    u: 0.0,
-                    turning: tgt[j].turning,
-                    bearing: bearings.1.get(j).copied(),
-                },
-                opts,
-            ) else {
+            let Some(head) = terms[i * m + j] else {
                 continue;
             };
+            let c0 = cost_of(0.0, 0.0, head);
             let b = marks(tgt, tgt_len, j, bearings.1);
-            let (c, rest) = associate_span(&a, &b, opts);
+            let cols: Vec<usize> = (1..m).map(|k| (j + k) % m).collect();
+            let (c, rest) = span_by(a.len(), b.len(), opts.skip_cost, |x, y| {
+                terms[rows[x] + cols[y]].map(|t| cost_of(a[x].u, b[y].u, t))
+            });
             let mut pairs = vec![(i, j)];
             pairs.extend(
                 rest.into_iter()
@@ -213,6 +247,75 @@ mod tests {
         let tgt = [mk(0.2, -90.), mk(0.3, 90.)];
         let (_, pairs) = associate_span(&src, &tgt, &opts);
         assert_eq!(pairs.len(), 1);
+    }
+
+    #[test]
+    fn cyclic_match_from_its_table_equals_each_starts_span_match() {
+        // Salient points of mixed turning and direction, with the shapes' own turn set, so
+        // that every term of a pair's cost and every refusal takes part.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let opts = CorrespondenceOptions {
+            outline_turn: Some(0.4),
+            ..Default::default()
+        };
+        for (n, m) in [(7, 9), (12, 5), (1, 4), (10, 10)] {
+            let mut pts = |k: usize, len: f64| -> (Vec<Salient>, Vec<f64>) {
+                let mut s: Vec<f64> = (0..k).map(|_| next() * len).collect();
+                s.sort_by(f64::total_cmp);
+                let pts = s
+                    .into_iter()
+                    .enumerate()
+                    .map(|(index, s)| Salient {
+                        index,
+                        s,
+                        turning: (next() - 0.3) * 3.0,
+                    })
+                    .collect();
+                (pts, (0..k).map(|_| (next() - 0.5) * 6.0).collect())
+            };
+            let (src, sb) = pts(n, 5.0);
+            let (tgt, tb) = pts(m, 7.0);
+            // The match as first written: every start's span matched afresh from its marks.
+            let mark = |p: &[Salient], b: &[f64], len: f64, start: usize, k: usize| Mark {
+                u: (p[(start + k) % p.len()].s - p[start].s).rem_euclid(len) / len,
+                turning: p[(start + k) % p.len()].turning,
+                bearing: Some(b[(start + k) % p.len()]),
+            };
+            let mut found = Vec::new();
+            for i in 0..n {
+                for j in 0..m {
+                    let head = (mark(&src, &sb, 5.0, i, 0), mark(&tgt, &tb, 7.0, j, 0));
+                    let Some(c0) = pair_cost(head.0, head.1, &opts) else {
+                        continue;
+                    };
+                    let a: Vec<Mark> = (1..n).map(|k| mark(&src, &sb, 5.0, i, k)).collect();
+                    let b: Vec<Mark> = (1..m).map(|k| mark(&tgt, &tb, 7.0, j, k)).collect();
+                    let (c, rest) = associate_span(&a, &b, &opts);
+                    let mut pairs = vec![(i, j)];
+                    pairs.extend(
+                        rest.iter()
+                            .map(|&(x, y)| ((i + 1 + x) % n, (j + 1 + y) % m)),
+                    );
+                    found.push((c0 + c, pairs));
+                }
+            }
+            let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
+            let limit = best + 1e-9 * (1.0 + best.abs());
+            let expected: Vec<_> = found
+                .into_iter()
+                .filter(|f| f.0 <= limit)
+                .map(|f| f.1)
+                .collect();
+            assert!(!expected.is_empty(), "{n} × {m}: nothing to compare");
+            let got = associate_cyclic(&src, 5.0, &tgt, 7.0, (&sb, &tb), &opts);
+            assert_eq!(got, expected, "{n} × {m}");
+        }
     }
 
     #[test]
