@@ -51,7 +51,7 @@ pub(crate) fn fit_paths(paths: &[BezPath], tol: f64) -> Vec<BezPath> {
                 })
                 .collect();
             let mut spans = Vec::new();
-            segment(&runs, 0, runs[0].len() - 1, tol, &mut spans);
+            segment(&runs, 0, runs[0].len() - 1, tol, &mut 0, &mut spans);
             for span in spans {
                 for (k, o) in out.iter_mut().enumerate() {
                     match span {
@@ -77,30 +77,54 @@ enum Span {
     Curve(usize, Vec<(Point, Point)>),
 }
 
-/// Cuts run indices `a..=b` into spans that hold `tol` in every keyframe.
-fn segment(runs: &[Vec<Point>], a: usize, b: usize, tol: f64, out: &mut Vec<Span>) {
+/// Cuts run indices `a..=b` into spans that hold `tol` in every keyframe. `miss` is the
+/// keyframe whose fit missed last: it is tried first, since a span that fails mostly fails in
+/// the same keyframes as its neighbours (which keyframes are tried first changes only how soon a
+/// failing span is given up, not the spans or their curves).
+fn segment(
+    runs: &[Vec<Point>],
+    a: usize,
+    b: usize,
+    tol: f64,
+    miss: &mut usize,
+    out: &mut Vec<Span>,
+) {
     if b - a <= 1 || runs.iter().all(|r| straight(&r[a..=b], tol)) {
         out.push(Span::Line(b));
         return;
     }
     if b - a >= 3 {
+        let fit = |r: &[Point]| match fit_cubic(&r[a..=b]) {
+            Some((c1, c2, err)) if err <= tol => Some((c1, c2)),
+            _ => None,
+        };
         // Fit every keyframe; the first that misses the tolerance decides a split.
-        let ctrls: Option<Vec<(Point, Point)>> = runs
-            .iter()
-            .map(|r| match fit_cubic(&r[a..=b]) {
-                Some((c1, c2, err)) if err <= tol => Some((c1, c2)),
-                _ => None,
-            })
-            .collect();
-        if let Some(ctrls) = ctrls {
-            out.push(Span::Curve(b, ctrls));
-            return;
+        let first = *miss;
+        if let Some(held) = fit(&runs[first]) {
+            let ctrls: Option<Vec<(Point, Point)>> = runs
+                .iter()
+                .enumerate()
+                .map(|(k, r)| {
+                    if k == first {
+                        return Some(held);
+                    }
+                    let f = fit(r);
+                    if f.is_none() {
+                        *miss = k;
+                    }
+                    f
+                })
+                .collect();
+            if let Some(ctrls) = ctrls {
+                out.push(Span::Curve(b, ctrls));
+                return;
+            }
         }
     }
     // Halving (rather than cutting at the worst point) keeps spans even and the count low.
     let mid = (a + b) / 2;
-    segment(runs, a, mid, tol, out);
-    segment(runs, mid, b, tol, out);
+    segment(runs, a, mid, tol, miss, out);
+    segment(runs, mid, b, tol, miss, out);
 }
 
 /// Whether every point lies within `tol` of the chord from the first to the last.
@@ -303,6 +327,41 @@ mod tests {
         // Each keyframe alone would need no more spans than both together.
         let alone = fit_paths(std::slice::from_ref(&a), tol).remove(0);
         assert!(alone.elements().len() <= out[0].elements().len());
+    }
+
+    #[test]
+    fn the_fit_does_not_depend_on_the_keyframes_order() {
+        // Keyframes dented at different places, so that different spans fail in different
+        // keyframes: the keyframe tried first follows the failures, the result must not.
+        let a = circle_polyline(240, 50.0, (0.0, 0.0));
+        let dented = |at: f64, depth: f64| -> BezPath {
+            a.elements()
+                .iter()
+                .map(|e| {
+                    let f = |p: Point| {
+                        let d = (-((p.y - at) / 6.0).powi(2)).exp() * depth;
+                        Point::new(p.x * (1.0 + depth / 100.0), p.y - d)
+                    };
+                    match *e {
+                        PathEl::MoveTo(p) => PathEl::MoveTo(f(p)),
+                        PathEl::LineTo(p) => PathEl::LineTo(f(p)),
+                        other => other,
+                    }
+                })
+                .collect()
+        };
+        let keys: Vec<BezPath> = (0..6)
+            .map(|k| dented(-45.0 + 18.0 * k as f64, 4.0 * k as f64))
+            .collect();
+        let forward = fit_paths(&keys, 0.05);
+        let mut reversed = keys.clone();
+        reversed.reverse();
+        let mut back = fit_paths(&reversed, 0.05);
+        back.reverse();
+        assert!(forward[0].elements().len() < a.elements().len());
+        for (f, b) in forward.iter().zip(&back) {
+            assert_eq!(f.elements(), b.elements());
+        }
     }
 
     #[test]
