@@ -169,21 +169,35 @@ impl FoldRepair {
                 .flat_map(|&v| self.ring[v].iter().map(move |&w| (v, w as usize)))
                 .map(|(v, w)| out[v].distance(out[w]))
                 .fold(0.0, f64::max);
+            // The movable vertices' neighbours beside their weights in one array, read by
+            // every sweep (up to a hundred on a stubborn fold) instead of two lists apiece.
+            let mut terms: Vec<(u32, f64)> = Vec::new();
+            let mut sweep: Vec<(usize, f64, usize)> = Vec::with_capacity(movable.len());
+            for &v in &movable {
+                if self.weight_sums[v] > 0.0 {
+                    terms.extend(
+                        self.ring[v]
+                            .iter()
+                            .copied()
+                            .zip(self.weights[v].iter().copied()),
+                    );
+                    sweep.push((v, self.weight_sums[v], terms.len()));
+                }
+            }
             for _ in 0..SWEEPS {
                 // The largest squared move: its root is the largest move (the root is
                 // monotonic and correctly rounded), taken once per sweep, not once per vertex.
                 let mut shift2 = 0.0f64;
-                for &v in &movable {
-                    let total = self.weight_sums[v];
-                    if total > 0.0 {
-                        let mut sum = Point::ZERO;
-                        for (&w, &k) in self.ring[v].iter().zip(&self.weights[v]) {
-                            sum += out[w as usize] * k;
-                        }
-                        let p = sum / total;
-                        shift2 = shift2.max((p - out[v]).length_squared());
-                        out[v] = p;
+                let mut from = 0;
+                for &(v, total, to) in &sweep {
+                    let mut sum = Point::ZERO;
+                    for &(w, k) in &terms[from..to] {
+                        sum += out[w as usize] * k;
                     }
+                    from = to;
+                    let p = sum / total;
+                    shift2 = shift2.max((p - out[v]).length_squared());
+                    out[v] = p;
                 }
                 if shift2.sqrt() <= 1e-9 * scale {
                     break;
