@@ -253,31 +253,29 @@ mod tests {
     fn cyclic_match_from_its_table_equals_each_starts_span_match() {
         // Salient points of mixed turning and direction, with the shapes' own turn set, so
         // that every term of a pair's cost and every refusal takes part.
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
         let opts = CorrespondenceOptions {
             outline_turn: Some(0.4),
             ..Default::default()
         };
         for (n, m) in [(7, 9), (12, 5), (1, 4), (10, 10)] {
-            let mut pts = |k: usize, len: f64| -> (Vec<Salient>, Vec<f64>) {
-                let mut s: Vec<f64> = (0..k).map(|_| next() * len).collect();
-                s.sort_by(f64::total_cmp);
-                let pts = s
-                    .into_iter()
-                    .enumerate()
-                    .map(|(index, s)| Salient {
-                        index,
-                        s,
-                        turning: (next() - 0.3) * 3.0,
+            let pts = |k: usize, len: f64| -> (Vec<Salient>, Vec<f64>) {
+                let phase = k as f64 * 0.37;
+                let pts = (0..k)
+                    .map(|i| {
+                        let x = i as f64;
+                        Salient {
+                            index: i,
+                            s: len * (x + 0.5 + 0.3 * (1.7 * x + phase).sin()) / k as f64,
+                            turning: 1.5 * (2.3 * x + phase).sin() + 0.4,
+                        }
                     })
                     .collect();
-                (pts, (0..k).map(|_| (next() - 0.5) * 6.0).collect())
+                (
+                    pts,
+                    (0..k)
+                        .map(|i| 3.0 * (0.9 * i as f64 - phase).sin())
+                        .collect(),
+                )
             };
             let (src, sb) = pts(n, 5.0);
             let (tgt, tb) = pts(m, 7.0);
