@@ -156,16 +156,15 @@ pub(crate) fn associate_cyclic(
     opts: &CorrespondenceOptions,
 ) -> Vec<Vec<(usize, usize)>> {
     let (n, m) = (src.len(), tgt.len());
-    let marks = |pts: &[Salient], len: f64, start: usize, bearing: &[f64]| -> Vec<Mark> {
+    // From a start, each other point's index and position along the curve (in span order:
+    // span position x is point (start + 1 + x) mod len); the turning and the bearing are in
+    // the pair table below, not here.
+    let span = |pts: &[Salient], len: f64, start: usize| -> Vec<(usize, f64)> {
         let s0 = pts[start].s;
         (1..pts.len())
             .map(|k| {
-                let q = pts[(start + k) % pts.len()];
-                Mark {
-                    u: (q.s - s0).rem_euclid(len) / len,
-                    turning: q.turning,
-                    bearing: bearing.get((start + k) % pts.len()).copied(),
-                }
+                let q = (start + k) % pts.len();
+                (q, (pts[q].s - s0).rem_euclid(len) / len)
             })
             .collect()
     };
@@ -182,26 +181,22 @@ pub(crate) fn associate_cyclic(
             )
         })
         .collect();
+    // The target's spans depend on their start only: made once, not once per source start.
+    let tgt_spans: Vec<Vec<(usize, f64)>> = (0..m).map(|j| span(tgt, tgt_len, j)).collect();
     let mut found: Vec<(f64, Vec<(usize, usize)>)> = Vec::new();
     for i in 0..n {
-        let a = marks(src, src_len, i, bearings.0);
-        // Span position x is source point (i + 1 + x) mod n, and likewise for the target.
-        let rows: Vec<usize> = (1..n).map(|k| (i + k) % n * m).collect();
-        for j in 0..m {
+        let a = span(src, src_len, i);
+        for (j, b) in tgt_spans.iter().enumerate() {
             let Some(head) = terms[i * m + j] else {
                 continue;
             };
             let c0 = cost_of(0.0, 0.0, head);
-            let b = marks(tgt, tgt_len, j, bearings.1);
-            let cols: Vec<usize> = (1..m).map(|k| (j + k) % m).collect();
             let (c, rest) = span_by(a.len(), b.len(), opts.skip_cost, |x, y| {
-                terms[rows[x] + cols[y]].map(|t| cost_of(a[x].u, b[y].u, t))
+                let ((p, ua), (q, ub)) = (a[x], b[y]);
+                terms[p * m + q].map(|t| cost_of(ua, ub, t))
             });
             let mut pairs = vec![(i, j)];
-            pairs.extend(
-                rest.into_iter()
-                    .map(|(x, y)| ((i + 1 + x) % n, (j + 1 + y) % m)),
-            );
+            pairs.extend(rest.into_iter().map(|(x, y)| (a[x].0, b[y].0)));
             found.push((c0 + c, pairs));
         }
     }
