@@ -73,18 +73,16 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
     let circle = disc_points(p, q);
     let da = embed(&a, &circle)?;
     let db = embed(&b, &circle)?;
-    let (disc, owner_a, owner_b, triangles) = overlay(n, &a, &da, &b, &db)?;
     let budget = VERTEX_BUDGET * (a.points.len() + b.points.len());
-    if disc.len() > budget {
+    let Some((disc, owner_a, owner_b, triangles)) = overlay(n, &a, &da, &b, &db, budget)? else {
         return Err(Error::input(
             crate::error::Drawings::Pair,
             format!(
-                "{}: the overlay would have {} vertices, more than {budget}",
-                outline.id,
-                disc.len()
+                "{}: the overlay would have more than {budget} vertices",
+                outline.id
             ),
         ));
-    }
+    };
     let carry = |d: &[Point], mesh: &Triangulation, owner: &[Option<u32>]| -> Result<Vec<Point>> {
         let locator = PointLocator::new(d, &mesh.triangles)?;
         Ok(disc
@@ -172,14 +170,17 @@ type Overlaid = (
 );
 
 /// The overlay of the two disc embeddings `da` of `a` and `db` of `b` (module docs); the first
-/// `n` vertices of both are the shared boundary.
+/// `n` vertices of both are the shared boundary. `None` as soon as it has more than `budget`
+/// vertices: most of its cost is the crossings, each a new vertex, and an overlay over the budget
+/// is given up whatever its final size, so the rest of them are not worth making.
 fn overlay(
     n: usize,
     a: &Triangulation,
     da: &[Point],
     b: &Triangulation,
     db: &[Point],
-) -> Result<Overlaid> {
+    budget: usize,
+) -> Result<Option<Overlaid>> {
     type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
     let mut cdt = Cdt::new();
     let insert = |cdt: &mut Cdt, p: Point| {
@@ -201,8 +202,14 @@ fn overlay(
     for (x, y) in crate::mesh::edges(&a.triangles) {
         cdt.add_constraint(ha[x as usize], ha[y as usize]);
     }
+    if cdt.num_vertices() > budget {
+        return Ok(None);
+    }
     for (x, y) in crate::mesh::edges(&b.triangles) {
         cdt.add_constraint_and_split(hb[x as usize], hb[y as usize], |p| p);
+        if cdt.num_vertices() > budget {
+            return Ok(None);
+        }
     }
     let count = cdt.num_vertices();
     let mut owner_a = vec![None; count];
@@ -236,7 +243,7 @@ fn overlay(
         }
         triangles.push(t);
     }
-    Ok((disc, owner_a, owner_b, triangles))
+    Ok(Some((disc, owner_a, owner_b, triangles)))
 }
 
 #[cfg(test)]
@@ -295,5 +302,29 @@ mod tests {
             }
         }
         assert!(built >= 2, "only {built} overlays within the budget");
+    }
+
+    /// The overlay stops as soon as it passes its vertex budget, and gives up exactly the
+    /// overlays that, made whole, would have more vertices than the budget.
+    #[test]
+    fn the_overlay_stops_once_over_its_budget_and_only_then() {
+        let (s, t) = (star(60, 3.0, 0.0, 0.6), star(60, 5.0, 0.3, 0.3));
+        let o = pair(s.clone(), t.clone());
+        let tol = Tolerances::new(4.0, 1.0);
+        let pairs = [o];
+        let a = triangulate(&pairs, &tol, Side::Source).unwrap();
+        let b = triangulate(&pairs, &tol, Side::Target).unwrap();
+        let circle = disc_points(&s, &t);
+        let (da, db) = (embed(&a, &circle).unwrap(), embed(&b, &circle).unwrap());
+        let whole = overlay(60, &a, &da, &b, &db, usize::MAX).unwrap().unwrap();
+        let count = whole.0.len();
+        // Crossings make most of it: a budget anywhere below stops it early.
+        assert!(count > a.points.len() + b.points.len());
+        let at = overlay(60, &a, &da, &b, &db, count).unwrap().unwrap();
+        assert!(crate::geometry::same_bits(&at.0, &whole.0));
+        assert_eq!(at.3, whole.3);
+        for budget in [count - 1, a.points.len() + b.points.len()] {
+            assert!(overlay(60, &a, &da, &b, &db, budget).unwrap().is_none());
+        }
     }
 }
