@@ -195,6 +195,18 @@ pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
         || (d4 == 0.0 && on(a, b, d))
 }
 
+/// Whether segments `ab` and `cd` cross properly: their interiors meet at a single point, and
+/// neither touches the other's line at an end (exact predicates).
+pub(crate) fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let apart = |p: f64, q: f64| (p > 0.0 && q < 0.0) || (p < 0.0 && q > 0.0);
+    a.x.max(b.x) >= c.x.min(d.x)
+        && c.x.max(d.x) >= a.x.min(b.x)
+        && a.y.max(b.y) >= c.y.min(d.y)
+        && c.y.max(d.y) >= a.y.min(b.y)
+        && apart(orient2d(c, d, a), orient2d(c, d, b))
+        && apart(orient2d(a, b, c), orient2d(a, b, d))
+}
+
 /// Where segments `ab` and `cd`, known to intersect ([`segments_intersect`]), meet: their
 /// crossing point, or for segments along one line, the end of one that lies on the other.
 /// Error messages point here ("crosses itself near (x, y)").

@@ -74,14 +74,30 @@ pub fn compatible_outlines(outline: &CurvePair, tol: &Tolerances) -> Result<Comp
     let da = embed(&a, &circle)?;
     let db = embed(&b, &circle)?;
     let budget = VERTEX_BUDGET * (a.points.len() + b.points.len());
-    let Some((disc, owner_a, owner_b, triangles)) = overlay(n, &a, &da, &b, &db, budget)? else {
-        return Err(Error::input(
+    let over_budget = || {
+        Error::input(
             crate::error::Drawings::Pair,
             format!(
                 "{}: the overlay would have more than {budget} vertices",
                 outline.id
             ),
-        ));
+        )
+    };
+    let (ea, eb) = (
+        crate::mesh::edges(&a.triangles),
+        crate::mesh::edges(&b.triangles),
+    );
+    // Every proper crossing of a source edge with a target edge is a vertex of the overlay, so
+    // counting them (far cheaper than making them) tells most overlays over the budget before
+    // one is made. The margin keeps a crossing that rounds onto an existing vertex (no new
+    // vertex) from deciding; `overlay` still stops at the budget itself.
+    let room = budget.saturating_sub(a.points.len() + b.points.len() - n) + budget / 64;
+    if crossings(&da, &ea, &db, &eb, room) > room {
+        return Err(over_budget());
+    }
+    let Some((disc, owner_a, owner_b, triangles)) = overlay(n, (&da, &ea), (&db, &eb), budget)?
+    else {
+        return Err(over_budget());
     };
     let carry = |d: &[Point], mesh: &Triangulation, owner: &[Option<u32>]| -> Result<Vec<Point>> {
         let locator = PointLocator::new(d, &mesh.triangles)?;
@@ -169,16 +185,79 @@ type Overlaid = (
     Vec<[u32; 3]>,
 );
 
-/// The overlay of the two disc embeddings `da` of `a` and `db` of `b` (module docs); the first
-/// `n` vertices of both are the shared boundary. `None` as soon as it has more than `budget`
-/// vertices: most of its cost is the crossings, each a new vertex, and an overlay over the budget
-/// is given up whatever its final size, so the rest of them are not worth making.
+/// How many times an edge of `ea` (vertex pairs, positions `pa`) crosses an edge of `eb`
+/// (positions `pb`) properly ([`crate::geometry::segments_cross`]), counted until the count
+/// passes `limit`.
+///
+/// The edges of `ea` are listed in the cells of a grid whose lines are at quantiles of the
+/// vertices' coordinates, so that a disc embedding's crowded middle is split as finely as its
+/// rim; each edge of `eb` is tested against the edges listed in the cells its box covers, each
+/// once.
+fn crossings(
+    pa: &[Point],
+    ea: &[(u32, u32)],
+    pb: &[Point],
+    eb: &[(u32, u32)],
+    limit: usize,
+) -> usize {
+    let side = ((ea.len() as f64).sqrt() as usize).clamp(1, 512);
+    let cuts = |coordinate: fn(&Point) -> f64| -> Vec<f64> {
+        let mut v: Vec<f64> = pa.iter().map(coordinate).collect();
+        v.sort_unstable_by(f64::total_cmp);
+        (1..side).map(|k| v[k * v.len() / side]).collect()
+    };
+    let (cx, cy) = (cuts(|p| p.x), cuts(|p| p.y));
+    // The cells (columns, rows) that the box of segment `pq` covers.
+    let span = |p: Point, q: Point| {
+        let at = |cuts: &[f64], v: f64| cuts.partition_point(|&c| c < v);
+        (
+            at(&cx, p.x.min(q.x))..=at(&cx, p.x.max(q.x)),
+            at(&cy, p.y.min(q.y))..=at(&cy, p.y.max(q.y)),
+        )
+    };
+    let mut entries: Vec<(u32, u32)> = Vec::with_capacity(ea.len() * 2);
+    for (e, &(u, v)) in ea.iter().enumerate() {
+        let (xs, ys) = span(pa[u as usize], pa[v as usize]);
+        for y in ys {
+            entries.extend(xs.clone().map(|x| ((y * side + x) as u32, e as u32)));
+        }
+    }
+    let (start, listed) = crate::mesh::compressed_rows(side * side, entries.into_iter());
+    let mut tested = vec![u32::MAX; ea.len()];
+    let mut count = 0;
+    for (f, &(u, v)) in eb.iter().enumerate() {
+        let (p, q) = (pb[u as usize], pb[v as usize]);
+        let (xs, ys) = span(p, q);
+        for y in ys {
+            for x in xs.clone() {
+                let cell = y * side + x;
+                for &e in &listed[start[cell]..start[cell + 1]] {
+                    if std::mem::replace(&mut tested[e as usize], f as u32) == f as u32 {
+                        continue;
+                    }
+                    let (a, b) = ea[e as usize];
+                    if crate::geometry::segments_cross(pa[a as usize], pa[b as usize], p, q) {
+                        count += 1;
+                        if count > limit {
+                            return count;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    count
+}
+
+/// The overlay of two disc embeddings, each given as its vertices' positions and its edges;
+/// the first `n` vertices of both are the shared boundary (module docs). `None` as soon as it
+/// has more than `budget` vertices: most of its cost is the crossings, each a new vertex, and
+/// an overlay over the budget is given up whatever its final size, so the rest of them are not
+/// worth making.
 fn overlay(
     n: usize,
-    a: &Triangulation,
-    da: &[Point],
-    b: &Triangulation,
-    db: &[Point],
+    (da, ea): (&[Point], &[(u32, u32)]),
+    (db, eb): (&[Point], &[(u32, u32)]),
     budget: usize,
 ) -> Result<Option<Overlaid>> {
     type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
@@ -199,13 +278,13 @@ fn overlay(
     for &p in &db[n..] {
         hb.push(insert(&mut cdt, p)?);
     }
-    for (x, y) in crate::mesh::edges(&a.triangles) {
+    for &(x, y) in ea {
         cdt.add_constraint(ha[x as usize], ha[y as usize]);
     }
     if cdt.num_vertices() > budget {
         return Ok(None);
     }
-    for (x, y) in crate::mesh::edges(&b.triangles) {
+    for &(x, y) in eb {
         cdt.add_constraint_and_split(hb[x as usize], hb[y as usize], |p| p);
         if cdt.num_vertices() > budget {
             return Ok(None);
@@ -304,27 +383,67 @@ mod tests {
         assert!(built >= 2, "only {built} overlays within the budget");
     }
 
-    /// The overlay stops as soon as it passes its vertex budget, and gives up exactly the
-    /// overlays that, made whole, would have more vertices than the budget.
-    #[test]
-    fn the_overlay_stops_once_over_its_budget_and_only_then() {
+    /// An embedded mesh: its vertices' positions in the disc, and its edges.
+    type Embedding = (Vec<Point>, Vec<(u32, u32)>);
+
+    /// The boundary's vertex count and the two embedded meshes of a star pair with crossings.
+    fn embedded_stars() -> (usize, Embedding, Embedding) {
         let (s, t) = (star(60, 3.0, 0.0, 0.6), star(60, 5.0, 0.3, 0.3));
-        let o = pair(s.clone(), t.clone());
+        let pairs = [pair(s.clone(), t.clone())];
         let tol = Tolerances::new(4.0, 1.0);
-        let pairs = [o];
         let a = triangulate(&pairs, &tol, Side::Source).unwrap();
         let b = triangulate(&pairs, &tol, Side::Target).unwrap();
         let circle = disc_points(&s, &t);
         let (da, db) = (embed(&a, &circle).unwrap(), embed(&b, &circle).unwrap());
-        let whole = overlay(60, &a, &da, &b, &db, usize::MAX).unwrap().unwrap();
+        let (ea, eb) = (
+            crate::mesh::edges(&a.triangles),
+            crate::mesh::edges(&b.triangles),
+        );
+        (60, (da, ea), (db, eb))
+    }
+
+    /// The overlay stops as soon as it passes its vertex budget, and gives up exactly the
+    /// overlays that, made whole, would have more vertices than the budget.
+    #[test]
+    fn the_overlay_stops_once_over_its_budget_and_only_then() {
+        let (n, (da, ea), (db, eb)) = embedded_stars();
+        let (a, b) = ((&da[..], &ea[..]), (&db[..], &eb[..]));
+        let whole = overlay(n, a, b, usize::MAX).unwrap().unwrap();
         let count = whole.0.len();
+        let vertices = da.len() + db.len() - n;
         // Crossings make most of it: a budget anywhere below stops it early.
-        assert!(count > a.points.len() + b.points.len());
-        let at = overlay(60, &a, &da, &b, &db, count).unwrap().unwrap();
+        assert!(count > vertices);
+        let at = overlay(n, a, b, count).unwrap().unwrap();
         assert!(crate::geometry::same_bits(&at.0, &whole.0));
         assert_eq!(at.3, whole.3);
-        for budget in [count - 1, a.points.len() + b.points.len()] {
-            assert!(overlay(60, &a, &da, &b, &db, budget).unwrap().is_none());
+        for budget in [count - 1, vertices] {
+            assert!(overlay(n, a, b, budget).unwrap().is_none());
         }
+    }
+
+    /// The crossings counted are every pair of edges that cross properly (a test of all
+    /// pairs), each one a vertex the overlay adds; counting stops just past the limit.
+    #[test]
+    fn crossings_are_the_vertices_the_overlay_adds() {
+        let (n, (da, ea), (db, eb)) = embedded_stars();
+        let all = ea
+            .iter()
+            .flat_map(|&(u, v)| eb.iter().map(move |&(x, y)| (u, v, x, y)))
+            .filter(|&(u, v, x, y)| {
+                crate::geometry::segments_cross(
+                    da[u as usize],
+                    da[v as usize],
+                    db[x as usize],
+                    db[y as usize],
+                )
+            })
+            .count();
+        assert!(all > 100, "{all}");
+        assert_eq!(crossings(&da, &ea, &db, &eb, usize::MAX), all);
+        assert_eq!(crossings(&da, &ea, &db, &eb, 10), 11);
+        let whole = overlay(n, (&da, &ea), (&db, &eb), usize::MAX)
+            .unwrap()
+            .unwrap();
+        assert_eq!(whole.0.len(), da.len() + db.len() - n + all);
     }
 }
