@@ -74,6 +74,45 @@ impl GridFrame {
         )
     }
 
+    /// The cells at Chebyshev distance exactly `r` from cell `(cx, cy)`, clipped to the grid,
+    /// as up to four rectangles `((x0, x1), (y0, y1))` (inclusive): the ring's bottom and top
+    /// rows, then its side columns between them. A ring search visits `O(r)` cells at ring
+    /// `r` this way, where a scan of the square would pass over `O(r²)` inner ones.
+    pub(crate) fn ring_strips(
+        &self,
+        (cx, cy): (usize, usize),
+        r: usize,
+    ) -> impl Iterator<Item = ((usize, usize), (usize, usize))> {
+        let ((x0, x1), _) = self.ring_square((cx, cy), r);
+        let (nx, ny) = (self.nx, self.ny);
+        // The rows strictly between the ring's bottom and top (for r > 0).
+        let inner = (
+            (cy + 1).saturating_sub(r),
+            (cy + r).saturating_sub(1).min(ny - 1),
+        );
+        [
+            (cy >= r).then_some(((x0, x1), (cy - r, cy - r))),
+            (r > 0 && cy + r < ny).then_some(((x0, x1), (cy + r, cy + r))),
+            (r > 0 && cx >= r).then(|| ((cx - r, cx - r), inner)),
+            (r > 0 && cx + r < nx).then(|| ((cx + r, cx + r), inner)),
+        ]
+        .into_iter()
+        .flatten()
+    }
+
+    /// The distance from `p` to the cells `x0..=x1 × y0..=y1` (0 inside them). Whatever a cell
+    /// lists because its box overlaps the cell may reach beyond it, but the part of it inside
+    /// the cell is at least this far from `p` (up to the rounding of the cells' sides).
+    pub(crate) fn cells_distance(
+        &self,
+        p: Point,
+        (x0, x1): (usize, usize),
+        (y0, y1): (usize, usize),
+    ) -> f64 {
+        let corner = |x: usize, y: usize| self.origin + Point::new(x as f64, y as f64) * self.cell;
+        box_distance(p, corner(x0, y0), corner(x1 + 1, y1 + 1))
+    }
+
     /// The distance from `p` to the nearest cell outside the square `x0..=x1 × y0..=y1`: the
     /// nearest of the four strips of the grid beyond the square's sides (the grid's own edges
     /// have none), infinite when the square covers the grid. Whatever lies in a cell outside
@@ -109,4 +148,55 @@ pub(crate) fn box_distance(p: Point, lo: Point, hi: Point) -> f64 {
     let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
     let dy = (lo.y - p.y).max(p.y - hi.y).max(0.0);
     dx.hypot(dy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rings' strips cover every cell of the grid once, ring `r` the cells at Chebyshev
+    /// distance `r` from the centre, wherever the centre is (corners and edges clip the rings).
+    #[test]
+    fn ring_strips_cover_each_cell_once_in_its_ring() {
+        let frame = GridFrame::covering(Point::ZERO, Point::new(7.0, 4.0), 28);
+        let (nx, ny) = (frame.nx, frame.ny);
+        assert!(nx > 3 && ny > 2, "{nx} × {ny}");
+        for (cx, cy) in [(0, 0), (nx - 1, ny - 1), (2, 1), (nx - 1, 0), (1, ny - 1)] {
+            let mut seen = vec![0; nx * ny];
+            for r in 0..nx.max(ny) {
+                for ((x0, x1), (y0, y1)) in frame.ring_strips((cx, cy), r) {
+                    for y in y0..=y1 {
+                        for x in x0..=x1 {
+                            assert_eq!(x.abs_diff(cx).max(y.abs_diff(cy)), r, "({x}, {y})");
+                            seen[y * nx + x] += 1;
+                        }
+                    }
+                }
+            }
+            assert!(
+                seen.iter().all(|&k| k == 1),
+                "centre ({cx}, {cy}): {seen:?}"
+            );
+        }
+    }
+
+    /// The distance to a block of cells is the distance to its box, and no more than to any of
+    /// its cells.
+    #[test]
+    fn cells_distance_is_the_distance_to_the_block() {
+        let frame = GridFrame::covering(Point::ZERO, Point::new(8.0, 8.0), 64);
+        let c = frame.cell;
+        let p = Point::new(-1.0, 0.5 * c);
+        assert!((frame.cells_distance(p, (0, 0), (0, 3)) - 1.0).abs() < 1e-12);
+        assert!((frame.cells_distance(p, (2, 5), (0, 0)) - (1.0 + 2.0 * c)).abs() < 1e-12);
+        assert_eq!(
+            frame.cells_distance(Point::new(0.5 * c, 0.5 * c), (0, 1), (0, 1)),
+            0.0
+        );
+        for x in 2..=5 {
+            assert!(
+                frame.cells_distance(p, (2, 5), (1, 3)) <= frame.cells_distance(p, (x, x), (2, 2))
+            );
+        }
+    }
 }

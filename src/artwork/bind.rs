@@ -172,7 +172,10 @@ impl<'a> PointLocator<'a> {
         // A triangle whose bounding box is farther than the best distance by more than the
         // rounding of either distance cannot win, so its distance is not computed. The margin
         // is far above that rounding (a few ulps of the coordinates), so the choice is the one
-        // the full scan makes.
+        // the full scan makes. A whole cell farther than that is passed over: a triangle's
+        // nearest point to `p` lies in a cell that lists it, and that cell is no farther from
+        // `p` than the triangle is, so a triangle that can win is still met there — which
+        // spares the far rings, where a point far from its part met thousands of triangles.
         let scale = p
             .abs()
             .max(self.frame.origin.abs())
@@ -181,25 +184,37 @@ impl<'a> PointLocator<'a> {
         let max_ring = self.frame.nx.max(self.frame.ny);
         for r in 0..=max_ring {
             let ((x0, x1), (y0, y1)) = self.frame.ring_square((cx, cy), r);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    if x.abs_diff(cx) != r && y.abs_diff(cy) != r {
-                        continue; // inner cells were searched in earlier rings
-                    }
-                    for &i in self.cell(x, y) {
-                        if let Some((bd, _)) = best {
-                            let [a, b, c] =
-                                self.triangles[i as usize].map(|v| self.points[v as usize]);
-                            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-                            let gap = (lo - p).max(p - hi).max(Point::ZERO);
-                            let reach = bd + 1e-9 * (bd + scale);
-                            if gap.length_squared() > reach * reach {
-                                continue;
-                            }
+            for (xs, ys) in self.frame.ring_strips((cx, cy), r) {
+                // A strip of the ring, then each of its cells, passed over when farther than
+                // the best triangle (see above).
+                let far = |best: Option<(f64, u32)>, xs, ys| {
+                    best.is_some_and(|(bd, _)| {
+                        self.frame.cells_distance(p, xs, ys) > bd + 1e-9 * (bd + scale)
+                    })
+                };
+                if far(best, xs, ys) {
+                    continue;
+                }
+                for y in ys.0..=ys.1 {
+                    for x in xs.0..=xs.1 {
+                        if far(best, (x, x), (y, y)) {
+                            continue;
                         }
-                        let d = self.distance_to_triangle(p, i);
-                        if best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
-                            best = Some((d, i));
+                        for &i in self.cell(x, y) {
+                            if let Some((bd, _)) = best {
+                                let [a, b, c] =
+                                    self.triangles[i as usize].map(|v| self.points[v as usize]);
+                                let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+                                let gap = (lo - p).max(p - hi).max(Point::ZERO);
+                                let reach = bd + 1e-9 * (bd + scale);
+                                if gap.length_squared() > reach * reach {
+                                    continue;
+                                }
+                            }
+                            let d = self.distance_to_triangle(p, i);
+                            if best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
+                                best = Some((d, i));
+                            }
                         }
                     }
                 }
@@ -883,6 +898,49 @@ pub(crate) mod tests {
                 .unwrap();
             if loc.containing(p).is_none() {
                 prop_assert_eq!(l.triangle, brute.1);
+            }
+        }
+    }
+
+    /// A 12 × 12 grid of unit squares, two triangles each, with some squares left out: many
+    /// cells, holes inside and a ragged outline.
+    fn holed_grid() -> (Vec<Point>, Vec<[u32; 3]>) {
+        let n = 13u32;
+        let pts = (0..n * n)
+            .map(|k| Point::new((k % n) as f64, (k / n) as f64))
+            .collect();
+        let mut tris = Vec::new();
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                if (i * 7 + j * 3) % 5 == 0 || (3..6).contains(&i) && (4..9).contains(&j) {
+                    continue;
+                }
+                let v = |i: u32, j: u32| j * n + i;
+                tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                tris.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+        (pts, tris)
+    }
+
+    proptest! {
+        #[test]
+        fn the_nearest_triangle_of_a_holed_mesh_is_the_brute_force_one(
+            x in -30.0..45.0f64,
+            y in -30.0..45.0f64,
+            whole in proptest::bool::ANY,
+        ) {
+            // Points in holes, beside the ragged outline and far outside, on whole units
+            // (equidistant from several triangles: the lowest index must win) or not.
+            let (pts, tris) = holed_grid();
+            let loc = PointLocator::new(&pts, &tris).unwrap();
+            let p = if whole { Point::new(x.round(), y.round()) } else { Point::new(x, y) };
+            let brute = (0..tris.len() as u32)
+                .map(|i| (loc.distance_to_triangle(p, i), i))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+                .unwrap();
+            if loc.containing(p).is_none() {
+                prop_assert_eq!(loc.locate(p).triangle, brute.1);
             }
         }
     }

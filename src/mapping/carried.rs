@@ -218,25 +218,10 @@ impl<'a> Nearby<'a> {
             }
         };
         let (cx, cy) = self.frame.cell_of(p);
-        let (nx, ny) = (self.frame.nx, self.frame.ny);
         for r in 0.. {
             let ((x0, x1), (y0, y1)) = self.frame.ring_square((cx, cy), r);
-            // The ring at Chebyshev distance r: its bottom and top rows, then its side columns.
-            if cy >= r {
-                self.scan(p, (x0, x1), (cy - r, cy - r), |d2, _| keep(&mut best, d2));
-            }
-            if r > 0 && cy + r < ny {
-                self.scan(p, (x0, x1), (cy + r, cy + r), |d2, _| keep(&mut best, d2));
-            }
-            if r > 0 {
-                // The rows strictly between the ring's bottom and top.
-                let inner = ((cy + 1).saturating_sub(r), (cy + r - 1).min(ny - 1));
-                if cx >= r {
-                    self.scan(p, (cx - r, cx - r), inner, |d2, _| keep(&mut best, d2));
-                }
-                if cx + r < nx {
-                    self.scan(p, (cx + r, cx + r), inner, |d2, _| keep(&mut best, d2));
-                }
+            for (xs, ys) in self.frame.ring_strips((cx, cy), r) {
+                self.scan(p, xs, ys, |d2, _| keep(&mut best, d2));
             }
             // Every vertex not yet seen lies in a cell beyond the square.
             let beyond = self.frame.beyond(p, (x0, x1), (y0, y1));
