@@ -43,6 +43,10 @@ const COARSENESS: f64 = 4.0;
 /// interpolate, and its slivers fold; the outline then morphs on its own instead.
 const VERTEX_BUDGET: usize = 3;
 
+/// Most grid cells per edge that [`crossings`] lists the edges of a mesh in before it gives the
+/// count up: a bound on its memory.
+const LISTING_BUDGET: usize = 64;
+
 /// Compatible triangulations of the two sides of the closed outline pair `outline` (module
 /// docs): vertices `0..n` are the outline's, in order. Errors when a side is not a simple
 /// polygon, or when rounding left a triangle the repair cannot straighten.
@@ -187,12 +191,15 @@ type Overlaid = (
 
 /// How many times an edge of `ea` (vertex pairs, positions `pa`) crosses an edge of `eb`
 /// (positions `pb`) properly ([`crate::geometry::segments_cross`]), counted until the count
-/// passes `limit`.
+/// passes `limit`; 0 (nothing known) when listing the edges would take more than
+/// [`LISTING_BUDGET`] cells per edge.
 ///
 /// The edges of `ea` are listed in the cells of a grid whose lines are at quantiles of the
 /// vertices' coordinates, so that a disc embedding's crowded middle is split as finely as its
 /// rim; each edge of `eb` is tested against the edges listed in the cells its box covers, each
-/// once.
+/// once. An edge is listed in every cell of its box, so many long diagonal edges (chords of the
+/// disc) could fill a listing far larger than the meshes: then the count is not made, and the
+/// overlay's own stop at its budget decides.
 fn crossings(
     pa: &[Point],
     ea: &[(u32, u32)],
@@ -215,7 +222,17 @@ fn crossings(
             at(&cy, p.y.min(q.y))..=at(&cy, p.y.max(q.y)),
         )
     };
-    let mut entries: Vec<(u32, u32)> = Vec::with_capacity(ea.len() * 2);
+    let listing: usize = ea
+        .iter()
+        .map(|&(u, v)| {
+            let (xs, ys) = span(pa[u as usize], pa[v as usize]);
+            xs.count() * ys.count()
+        })
+        .sum();
+    if listing > LISTING_BUDGET * ea.len() {
+        return 0;
+    }
+    let mut entries: Vec<(u32, u32)> = Vec::with_capacity(listing);
     for (e, &(u, v)) in ea.iter().enumerate() {
         let (xs, ys) = span(pa[u as usize], pa[v as usize]);
         for y in ys {
@@ -441,6 +458,12 @@ mod tests {
         assert!(all > 100, "{all}");
         assert_eq!(crossings(&da, &ea, &db, &eb, usize::MAX), all);
         assert_eq!(crossings(&da, &ea, &db, &eb, 10), 11);
+        // Long diagonal edges listed in too many cells: no count.
+        let fan: Vec<(u32, u32)> = (1..ea.len() as u32).map(|k| (0, k % 60)).collect();
+        let spread: Vec<Point> = (0..60)
+            .map(|k| Point::new(k as f64, (k * 37 % 60) as f64))
+            .collect();
+        assert_eq!(crossings(&spread, &fan, &db, &eb, usize::MAX), 0);
         let whole = overlay(n, (&da, &ea), (&db, &eb), usize::MAX)
             .unwrap()
             .unwrap();
