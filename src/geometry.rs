@@ -395,6 +395,28 @@ mod tests {
         assert!(!point_in_polygon(p(3., 1.), &sq));
     }
 
+    /// A proper crossing is one point inside both segments: touching at an end, an end on the
+    /// other segment, collinear overlap and shared end points are not.
+    #[test]
+    fn proper_crossings() {
+        let x = |a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)| {
+            let (a, b, c, d) = (p(a.0, a.1), p(b.0, b.1), p(c.0, c.1), p(d.0, d.1));
+            let one = segments_cross(a, b, c, d);
+            // Symmetric in the two segments and in their directions.
+            assert_eq!(one, segments_cross(c, d, a, b));
+            assert_eq!(one, segments_cross(b, a, d, c));
+            one
+        };
+        assert!(x((0., 0.), (2., 2.), (0., 2.), (2., 0.)));
+        assert!(x((0., 0.), (1e-9, 3.), (-1., 1.), (1., 1.)));
+        assert!(!x((0., 0.), (1., 0.), (0., 1.), (1., 1.)));
+        assert!(!x((0., 0.), (1., 0.), (1., 0.), (1., 1.)));
+        assert!(!x((0., 0.), (2., 0.), (1., 0.), (1., 1.)));
+        assert!(!x((0., 0.), (2., 0.), (1., 0.), (3., 0.)));
+        assert!(!x((0., 0.), (2., 0.), (0., 0.), (2., 0.)));
+        assert!(!x((0., 0.), (1., 1.), (2., 2.), (3., 0.)));
+    }
+
     #[test]
     fn segment_intersection_cases() {
         assert!(segments_intersect(
