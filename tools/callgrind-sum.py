@@ -6,21 +6,27 @@ counts are added here. A function's count in one profile is its largest inclusiv
 rayon's worker threads are counted apart from the main thread, so shares under `main` miss the
 work they hand over.
 
-Usage: python3 tools/callgrind-sum.py [--top N] CALLGRIND_OUT...
+With --self, each function's own cost (its lines, not its callees') is summed instead.
+
+Usage: python3 tools/callgrind-sum.py [--top N] [--self] CALLGRIND_OUT...
 (profiles as `valgrind --tool=callgrind --callgrind-out-file=F crmorph morph ...` writes them,
 from a build with debug information)."""
 import collections, re, subprocess, sys
 
 args = sys.argv[1:]
-top = 40
-if args[:1] == ['--top']:
-    top, args = int(args[1]), args[2:]
+top, inclusive = 40, True
+while args[:1] in (['--top'], ['--self']):
+    if args[0] == '--top':
+        top, args = int(args[1]), args[2:]
+    else:
+        inclusive, args = False, args[1:]
 if not args:
     sys.exit(__doc__)
 line_re = re.compile(r'\s*([\d,]+) \(\s*[\d.]+%\)\s+(\S+?):(.+?)(?: \[.*\])?$')
 total, summed = 0, collections.Counter()
 for path in args:
-    out = subprocess.run(['callgrind_annotate', '--inclusive=yes', '--threshold=100', path],
+    out = subprocess.run(['callgrind_annotate', f'--inclusive={"yes" if inclusive else "no"}',
+                          '--threshold=100', path],
                          capture_output=True, text=True, check=True).stdout
     largest = {}
     for line in out.splitlines():
@@ -31,8 +37,14 @@ for path in args:
         if not m:
             continue
         count, source, function = int(m.group(1).replace(',', '')), m.group(2), m.group(3)
+        if not inclusive:
+            # Own cost: every line under the function's name, its inlined std and dependency
+            # code included.
+            largest[function] = largest.get(function, 0) + count
+            continue
         # Lines attributed to inlined std or dependency code inside a crmorph function repeat
-        # that function's name; its own line is the one from crmorph's sources.
+        # that function's name with part of its inclusive cost; its own line is the one from
+        # crmorph's sources.
         if 'crmorph::' in function and ('/rustc/' in source or '.cargo/' in source):
             continue
         largest[function] = max(largest.get(function, 0), count)
