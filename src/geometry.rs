@@ -170,20 +170,14 @@ pub fn bounding_box(points: impl IntoIterator<Item = Point>) -> Option<(Point, P
 /// composite walk's crossing test offers many such pairs at every step (issue 16: 2.3 % fewer
 /// instructions over the slowest corpus pairs).
 pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
-    if a.x.max(b.x) < c.x.min(d.x)
-        || c.x.max(d.x) < a.x.min(b.x)
-        || a.y.max(b.y) < c.y.min(d.y)
-        || c.y.max(d.y) < a.y.min(b.y)
-    {
+    if boxes_apart(a, b, c, d) {
         return false;
     }
     let d1 = orient2d(c, d, a);
     let d2 = orient2d(c, d, b);
     let d3 = orient2d(a, b, c);
     let d4 = orient2d(a, b, d);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
+    if opposite(d1, d2) && opposite(d3, d4) {
         return true;
     }
     let on = |p: Point, q: Point, r: Point| {
@@ -196,15 +190,27 @@ pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
 }
 
 /// Whether segments `ab` and `cd` cross properly: their interiors meet at a single point, and
-/// neither touches the other's line at an end (exact predicates).
+/// neither touches the other's line at an end (exact predicates; the first part of
+/// [`segments_intersect`]).
 pub(crate) fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let apart = |p: f64, q: f64| (p > 0.0 && q < 0.0) || (p < 0.0 && q > 0.0);
-    a.x.max(b.x) >= c.x.min(d.x)
-        && c.x.max(d.x) >= a.x.min(b.x)
-        && a.y.max(b.y) >= c.y.min(d.y)
-        && c.y.max(d.y) >= a.y.min(b.y)
-        && apart(orient2d(c, d, a), orient2d(c, d, b))
-        && apart(orient2d(a, b, c), orient2d(a, b, d))
+    !boxes_apart(a, b, c, d)
+        && opposite(orient2d(c, d, a), orient2d(c, d, b))
+        && opposite(orient2d(a, b, c), orient2d(a, b, d))
+}
+
+/// Whether the boxes of segments `ab` and `cd` are apart, so that the segments cannot meet.
+#[inline]
+fn boxes_apart(a: Point, b: Point, c: Point, d: Point) -> bool {
+    a.x.max(b.x) < c.x.min(d.x)
+        || c.x.max(d.x) < a.x.min(b.x)
+        || a.y.max(b.y) < c.y.min(d.y)
+        || c.y.max(d.y) < a.y.min(b.y)
+}
+
+/// Whether two orientations have strictly opposite signs (the points lie on either side).
+#[inline]
+fn opposite(p: f64, q: f64) -> bool {
+    (p > 0.0 && q < 0.0) || (p < 0.0 && q > 0.0)
 }
 
 /// Where segments `ab` and `cd`, known to intersect ([`segments_intersect`]), meet: their

@@ -222,19 +222,19 @@ fn crossings(
             at(&cy, p.y.min(q.y))..=at(&cy, p.y.max(q.y)),
         )
     };
-    let listing: usize = ea
+    let spans: Vec<_> = ea
         .iter()
-        .map(|&(u, v)| {
-            let (xs, ys) = span(pa[u as usize], pa[v as usize]);
-            xs.count() * ys.count()
-        })
+        .map(|&(u, v)| span(pa[u as usize], pa[v as usize]))
+        .collect();
+    let listing: usize = spans
+        .iter()
+        .map(|(xs, ys)| xs.clone().count() * ys.clone().count())
         .sum();
     if listing > LISTING_BUDGET * ea.len() {
         return 0;
     }
     let mut entries: Vec<(u32, u32)> = Vec::with_capacity(listing);
-    for (e, &(u, v)) in ea.iter().enumerate() {
-        let (xs, ys) = span(pa[u as usize], pa[v as usize]);
+    for (e, (xs, ys)) in spans.into_iter().enumerate() {
         for y in ys {
             entries.extend(xs.clone().map(|x| ((y * side + x) as u32, e as u32)));
         }
