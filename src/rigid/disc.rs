@@ -569,7 +569,9 @@ impl DiscRigid {
     }
 
     pub(crate) fn scratch(&self) -> FrameScratch {
-        let mut s = FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len());
+        // No rotation buffers: the disc method's frames take their rotations a chunk at a time
+        // on the stack (`assemble`).
+        let mut s = FrameScratch::new(&self.system, self.centroid_source.len(), 0);
         if let Some(bm) = self.group.as_ref().and_then(|g| g.barycenters.as_ref()) {
             s.group = Some(Box::new((
                 bm.scratch(),

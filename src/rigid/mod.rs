@@ -119,6 +119,10 @@ pub struct Interpolator {
     n: usize,
     /// Tells this interpolator's workspaces from others' ([`Interpolator::at`]).
     id: u64,
+    /// Workspaces of earlier [`Interpolator::frames`] calls, lent to the next ones: automatic
+    /// mode asks for its fold check's frames a few at a time, and a new workspace allocates and
+    /// zeroes a batch row per vertex (issue 16). At most one per thread that ran a batch.
+    spare: std::sync::Mutex<Vec<Workspace>>,
 }
 
 /// A fresh [`Interpolator::id`].
@@ -135,6 +139,26 @@ pub struct Workspace {
     /// The [`Interpolator::id`] it was made for.
     owner: u64,
     scratch: Option<FrameScratch>,
+}
+
+/// A workspace lent by [`Interpolator::lend`], given back to its spares when dropped.
+struct Lent<'a> {
+    ws: Workspace,
+    to: &'a std::sync::Mutex<Vec<Workspace>>,
+}
+
+impl Drop for Lent<'_> {
+    fn drop(&mut self) {
+        // What stays behind is never used: a workspace of no interpolator, with no buffers.
+        let empty = Workspace {
+            owner: u64::MAX,
+            scratch: None,
+        };
+        let ws = std::mem::replace(&mut self.ws, empty);
+        if let Ok(mut spare) = self.to.lock() {
+            spare.push(ws);
+        }
+    }
 }
 
 fn check_triangles(triangles: &[[u32; 3]], n: usize) -> Result<()> {
@@ -182,6 +206,7 @@ impl Interpolator {
             kind,
             n,
             id: next_id(),
+            spare: Default::default(),
         })
     }
 
@@ -263,6 +288,7 @@ impl Interpolator {
             kind: Kind::Disc(d),
             n,
             id: next_id(),
+            spare: Default::default(),
         })
     }
 
@@ -275,6 +301,7 @@ impl Interpolator {
             n: d.vertex_count(),
             kind: Kind::Disc(d),
             id: next_id(),
+            spare: Default::default(),
         })
     }
 
@@ -395,6 +422,16 @@ impl Interpolator {
         }
     }
 
+    /// A spare workspace of this interpolator, or a new one; it goes back to the spares when
+    /// the loan is dropped.
+    fn lend(&self) -> Lent<'_> {
+        let spare = self.spare.lock().ok().and_then(|mut s| s.pop());
+        Lent {
+            ws: spare.unwrap_or_else(|| self.workspace()),
+            to: &self.spare,
+        }
+    }
+
     /// Vertices at `t` in a new vector.
     pub fn at_vec(&self, t: f64) -> Vec<Point> {
         let mut out = vec![Point::ZERO; self.n];
@@ -405,15 +442,7 @@ impl Interpolator {
     /// Many frames, in parallel (rayon) when there is enough work (about half a millisecond or
     /// more), one workspace per worker: `frames[k]` is the frame at `ts[k]`.
     pub fn frames(&self, ts: &[f64]) -> Vec<Vec<Point>> {
-        parallel_frames(
-            ts,
-            self.n,
-            || self.workspace(),
-            |ts, frames, ws| {
-                let outs = frames.iter_mut().map(Vec::as_mut_slice);
-                self.many_into(ts, outs, ws, Repair::AsSetUp)
-            },
-        )
+        self.frames_repairing(ts, Repair::AsSetUp)
     }
 
     /// Frames at `ts` like [`Interpolator::frames`], with the disc method's fold repair as
@@ -424,10 +453,10 @@ impl Interpolator {
         parallel_frames(
             ts,
             self.n,
-            || self.workspace(),
+            || self.lend(),
             |ts, frames, ws| {
                 let outs = frames.iter_mut().map(Vec::as_mut_slice);
-                self.many_into(ts, outs, ws, repair)
+                self.many_into(ts, outs, &mut ws.ws, repair)
             },
         )
     }

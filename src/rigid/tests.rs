@@ -285,6 +285,33 @@ fn frames_solved_together_have_the_bits_of_lone_frames() {
     }
 }
 
+#[test]
+fn frames_lend_their_workspaces_to_the_next_call() {
+    // Automatic mode asks for frames a few at a time: the workspaces of one call serve the
+    // next, at most one per thread, and a used workspace gives the bits of a new one.
+    let (src, tris) = grid(9, 9, 1.0);
+    let it = Interpolator::new(Method::Disc, &src, &bend(&src, 9.0, 1.2, 0.5), &tris).unwrap();
+    let spares = || it.spare.lock().map(|s| s.len()).unwrap_or(usize::MAX);
+    assert_eq!(spares(), 0);
+    let first = it.frames(&[0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]);
+    let lent = spares();
+    assert!(
+        (1..=rayon::current_num_threads()).contains(&lent),
+        "{lent} spare workspaces"
+    );
+    for ts in [&[0.9, 0.5][..], &[0.3][..]] {
+        let again = it.frames(ts);
+        assert_eq!(spares(), lent, "the spares grew");
+        for (f, &t) in again.iter().zip(ts) {
+            let k = (t * 10.0).round() as usize - 1;
+            assert!(
+                bits(f) == bits(&first[k]),
+                "t = {t} differs on a used workspace"
+            );
+        }
+    }
+}
+
 /// Frames computed with the kernels compiled for wide instructions (`simd.rs`) have the bits
 /// of plain code: lone frames, batches of 1, 3, 8 and 11 frames, with the fold repair, and
 /// with eq. (2)'s per-frame targets and per-vertex adjustments (the skeleton's path).
