@@ -100,17 +100,19 @@ impl GridFrame {
         .flatten()
     }
 
-    /// The distance from `p` to the cells `x0..=x1 × y0..=y1` (0 inside them). Whatever a cell
-    /// lists because its box overlaps the cell may reach beyond it, but the part of it inside
-    /// the cell is at least this far from `p` (up to the rounding of the cells' sides).
-    pub(crate) fn cells_distance(
+    /// The squared distance from `p` to the cells `x0..=x1 × y0..=y1` (0 inside them): a
+    /// search compares it with a squared bound, without a square root per cell. Whatever a
+    /// cell lists because its box overlaps the cell may reach beyond it, but the part of it
+    /// inside the cell is at least this far from `p` (up to the rounding of the cells' sides).
+    pub(crate) fn cells_distance_squared(
         &self,
         p: Point,
         (x0, x1): (usize, usize),
         (y0, y1): (usize, usize),
     ) -> f64 {
         let corner = |x: usize, y: usize| self.origin + Point::new(x as f64, y as f64) * self.cell;
-        box_distance(p, corner(x0, y0), corner(x1 + 1, y1 + 1))
+        let (lo, hi) = (corner(x0, y0), corner(x1 + 1, y1 + 1));
+        (lo - p).max(p - hi).max(Point::ZERO).length_squared()
     }
 
     /// The distance from `p` to the nearest cell outside the square `x0..=x1 × y0..=y1`: the
@@ -187,16 +189,18 @@ mod tests {
         let frame = GridFrame::covering(Point::ZERO, Point::new(8.0, 8.0), 64);
         let c = frame.cell;
         let p = Point::new(-1.0, 0.5 * c);
-        assert!((frame.cells_distance(p, (0, 0), (0, 3)) - 1.0).abs() < 1e-12);
-        assert!((frame.cells_distance(p, (2, 5), (0, 0)) - (1.0 + 2.0 * c)).abs() < 1e-12);
+        let cells_distance = |xs, ys| frame.cells_distance_squared(p, xs, ys).sqrt();
+        assert!((cells_distance((0, 0), (0, 3)) - 1.0).abs() < 1e-12);
+        assert!((cells_distance((2, 5), (0, 0)) - (1.0 + 2.0 * c)).abs() < 1e-12);
+        // Beyond a corner: the distance to the corner.
+        let corner = (1.0 + 2.0 * c).hypot(2.5 * c);
+        assert!((cells_distance((2, 5), (3, 4)) - corner).abs() < 1e-12);
         assert_eq!(
-            frame.cells_distance(Point::new(0.5 * c, 0.5 * c), (0, 1), (0, 1)),
+            frame.cells_distance_squared(Point::new(0.5 * c, 0.5 * c), (0, 1), (0, 1)),
             0.0
         );
         for x in 2..=5 {
-            assert!(
-                frame.cells_distance(p, (2, 5), (1, 3)) <= frame.cells_distance(p, (x, x), (2, 2))
-            );
+            assert!(cells_distance((2, 5), (1, 3)) <= cells_distance((x, x), (2, 2)));
         }
     }
 }

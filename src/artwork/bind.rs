@@ -146,6 +146,12 @@ impl<'a> PointLocator<'a> {
         let (cx, cy) = self.frame.cell_of(p);
         for &i in self.cell(cx, cy) {
             let [a, b, c] = self.triangles[i as usize].map(|v| self.points[v as usize]);
+            // Outside the triangle's box, outside the triangle: the exact tests below would
+            // say so too, at four orientation predicates.
+            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+            if p.x < lo.x || p.y < lo.y || p.x > hi.x || p.y > hi.y {
+                continue;
+            }
             let s = orient2d(a, b, c).signum();
             if orient2d(a, b, p) * s >= 0.0
                 && orient2d(b, c, p) * s >= 0.0
@@ -189,7 +195,9 @@ impl<'a> PointLocator<'a> {
                 // A strip of the ring, then each of its cells, passed over when farther than
                 // the best triangle (see above).
                 let far = |best: Option<(f64, u32)>, xs, ys| {
-                    best.is_some_and(|(bd, _)| self.frame.cells_distance(p, xs, ys) > reach(bd))
+                    best.is_some_and(|(bd, _)| {
+                        self.frame.cells_distance_squared(p, xs, ys) > reach(bd) * reach(bd)
+                    })
                 };
                 if far(best, xs, ys) {
                     continue;
