@@ -8,6 +8,7 @@
 //! it removes what is registered, so a signal never finds a temporary that is not registered
 //! yet, nor removes a finished output.
 
+use std::collections::BTreeSet;
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -90,11 +91,23 @@ fn owner_pid(name: &OsStr) -> Option<(u32, bool)> {
     Some((pid.parse().ok()?, folder))
 }
 
+/// The folders [`clean_stale`] has listed in this run.
+static CLEANED: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+
 /// Removes the temporaries in `dir` that a crmorph process killed without a chance to clean
 /// up left: names of crmorph's own pattern whose process is gone, a regular file or a folder
 /// (never a symbolic link) owned by this user. Only where `/proc` tells which processes live
-/// (Linux); errors are ignored.
+/// (Linux); errors are ignored. Once per folder and run: `crmorph batch` writes every output
+/// of a folder through here, and listing the folder again for each would cost each pair time
+/// in proportion to the outputs already written (issue 16).
 pub(crate) fn clean_stale(dir: &Path) {
+    let first = CLEANED
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(dir.to_path_buf());
+    if !first {
+        return;
+    }
     #[cfg(unix)]
     {
         use std::os::unix::fs::MetadataExt;
@@ -163,5 +176,9 @@ mod tests {
         clean_stale(dir.path());
         assert!(!dead.exists() && !dead_dir.exists());
         assert!(mine.exists() && other.exists());
+        // Listed once per run: what a killed process leaves later waits for the next run.
+        std::fs::write(&dead, b"x").unwrap();
+        clean_stale(dir.path());
+        assert!(dead.exists());
     }
 }
