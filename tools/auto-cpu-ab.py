@@ -14,7 +14,9 @@ pairs = json.load(open(os.path.join(root, 'pairs.json')))['pairs']
 builds = {'old': old, 'new': new}
 cpu = {'old': [], 'new': []}
 result = {'old': {}, 'new': {}}
-out = os.path.join(tempfile.gettempdir(), 'crmorph-auto-cpu-ab.svg')
+# In a folder of its own: crmorph lists the output's folder once per run (stale temporaries),
+# so a crowded TMPDIR would add its own cost to every pair.
+out = os.path.join(tempfile.mkdtemp(prefix='crmorph-auto-cpu-ab-'), 'out.svg')
 for i, p in enumerate(pairs):
     s, t = os.path.join(root, p['source']), os.path.join(root, p['target'])
     for k in (['old', 'new'] if i % 2 == 0 else ['new', 'old']):

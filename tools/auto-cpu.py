@@ -7,7 +7,9 @@ Usage: python3 tools/auto-cpu.py CORPUS_DIR CRMORPH_BINARY OUT.json
 (CORPUS_DIR as made by `node tools/corpus/draw.js`, with its pairs.json)."""
 import json, os, subprocess, sys, time
 root = sys.argv[1]; exe = sys.argv[2]; out = sys.argv[3]
-OUTPUT = os.path.join(os.environ.get('TMPDIR', '/tmp'), 'crmorph-auto-cpu.svg')
+# In a folder of its own: crmorph lists the output's folder once per run (stale temporaries),
+# so a crowded TMPDIR would add its own cost to every pair.
+OUTPUT = os.path.join(__import__('tempfile').mkdtemp(prefix='crmorph-auto-cpu-'), 'out.svg')
 pairs = json.load(open(os.path.join(root, 'pairs.json')))['pairs']
 rows = []
 for p in pairs:
