@@ -125,7 +125,7 @@ fn composing_avoids_the_folds_of_one_direct_map() {
 }
 
 #[test]
-fn a_step_that_needed_untangling_grows_only_after_another_accepted_one() {
+fn a_step_that_needed_untangling_grows_after_accepted_ones_and_backs_off_when_growth_fails() {
     let mut s = Step::new(0.25);
     s.rejected();
     s.rejected();
@@ -134,12 +134,38 @@ fn a_step_that_needed_untangling_grows_only_after_another_accepted_one() {
     assert_eq!(s.h, 0.0625, "untangled right after a rejection: kept");
     s.accepted(false);
     assert_eq!(s.h, 0.125, "a second accepted map in a row: doubled");
-    s.rejected();
-    s.accepted(true);
-    assert_eq!(s.h, 0.125, "a clean map: doubled at once");
-    s.accepted(true);
     s.accepted(false);
+    assert_eq!(s.h, 0.125, "the count starts again at the new step");
+    s.accepted(false);
+    assert_eq!(s.h, 0.25);
+    // The doubled step is rejected at once: the next growth waits for four accepted maps.
+    s.rejected();
+    assert_eq!(s.h, 0.125);
+    for _ in 0..3 {
+        s.accepted(false);
+        assert_eq!(s.h, 0.125, "patience after a failed growth");
+    }
+    s.accepted(false);
+    assert_eq!(s.h, 0.25);
+    // A rejection that does not follow a growth leaves the patience as it is.
+    s.accepted(false);
+    s.rejected();
+    assert_eq!((s.h, s.patience), (0.125, 4));
+    // A clean map doubles at once and forgets the failed growths.
+    s.accepted(true);
+    assert_eq!((s.h, s.patience), (0.25, 2));
+    s.accepted(true);
     assert_eq!(s.h, 0.25, "never beyond the largest step");
+    // Failed growths wait longer each time, up to sixteen maps.
+    let mut t = Step::new(1.0);
+    t.rejected();
+    for _ in 0..6 {
+        while t.h < 1.0 {
+            t.accepted(false);
+        }
+        t.rejected();
+    }
+    assert_eq!(t.patience, 16);
 }
 
 #[test]
