@@ -121,7 +121,8 @@ pub struct Interpolator {
     id: u64,
     /// Workspaces of earlier [`Interpolator::frames`] calls, lent to the next ones: automatic
     /// mode asks for its fold check's frames a few at a time, and a new workspace allocates and
-    /// zeroes a batch row per vertex (issue 16). At most one per thread that ran a batch.
+    /// zeroes a batch row per vertex (issue 16). At most one per thread that ran a batch, and
+    /// only up to [`SPARE_VERTICES`] vertices.
     spare: std::sync::Mutex<Vec<Workspace>>,
 }
 
@@ -141,10 +142,15 @@ pub struct Workspace {
     scratch: Option<FrameScratch>,
 }
 
-/// A workspace lent by [`Interpolator::lend`], given back to its spares when dropped.
+/// The most vertices for which an interpolator keeps the workspaces of its `frames` calls
+/// (about 4 MB each): beyond, making one costs little beside the frames it serves, and a
+/// morph kept in memory should not hold hundreds of megabytes of scratch.
+const SPARE_VERTICES: usize = 1 << 15;
+
+/// A workspace lent by [`Interpolator::lend`], given back to its spares (if any) when dropped.
 struct Lent<'a> {
     ws: Workspace,
-    to: &'a std::sync::Mutex<Vec<Workspace>>,
+    to: Option<&'a std::sync::Mutex<Vec<Workspace>>>,
 }
 
 impl Drop for Lent<'_> {
@@ -155,7 +161,7 @@ impl Drop for Lent<'_> {
             scratch: None,
         };
         let ws = std::mem::replace(&mut self.ws, empty);
-        if let Ok(mut spare) = self.to.lock() {
+        if let Some(Ok(mut spare)) = self.to.map(|m| m.lock()) {
             spare.push(ws);
         }
     }
@@ -423,12 +429,13 @@ impl Interpolator {
     }
 
     /// A spare workspace of this interpolator, or a new one; it goes back to the spares when
-    /// the loan is dropped.
+    /// the loan is dropped, unless the mesh has more than [`SPARE_VERTICES`] vertices.
     fn lend(&self) -> Lent<'_> {
-        let spare = self.spare.lock().ok().and_then(|mut s| s.pop());
+        let to = (self.n <= SPARE_VERTICES).then_some(&self.spare);
+        let spare = to.and_then(|m| m.lock().ok()?.pop());
         Lent {
             ws: spare.unwrap_or_else(|| self.workspace()),
-            to: &self.spare,
+            to,
         }
     }
 

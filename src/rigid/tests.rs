@@ -310,6 +310,12 @@ fn frames_lend_their_workspaces_to_the_next_call() {
             );
         }
     }
+    // A large mesh keeps no scratch between calls.
+    let (src, tris) = grid(190, 190, 1.0);
+    assert!(src.len() > super::SPARE_VERTICES);
+    let large = Interpolator::new(Method::Disc, &src, &src, &tris).unwrap();
+    large.frames(&[0.5]);
+    assert_eq!(large.spare.lock().map(|s| s.len()).ok(), Some(0));
 }
 
 /// Frames computed with the kernels compiled for wide instructions (`simd.rs`) have the bits
