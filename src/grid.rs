@@ -111,8 +111,7 @@ impl GridFrame {
         (y0, y1): (usize, usize),
     ) -> f64 {
         let corner = |x: usize, y: usize| self.origin + Point::new(x as f64, y as f64) * self.cell;
-        let (lo, hi) = (corner(x0, y0), corner(x1 + 1, y1 + 1));
-        (lo - p).max(p - hi).max(Point::ZERO).length_squared()
+        box_distance_squared(p, corner(x0, y0), corner(x1 + 1, y1 + 1))
     }
 
     /// The distance from `p` to the nearest cell outside the square `x0..=x1 × y0..=y1`: the
@@ -143,6 +142,12 @@ impl GridFrame {
         }
         beyond
     }
+}
+
+/// The squared distance from `p` to the box with corners `lo` and `hi` (0 inside it): for
+/// searches that compare it with a squared bound.
+pub(crate) fn box_distance_squared(p: Point, lo: Point, hi: Point) -> f64 {
+    (lo - p).max(p - hi).max(Point::ZERO).length_squared()
 }
 
 /// The distance from `p` to the box with corners `lo` and `hi` (0 inside it).

@@ -10,7 +10,7 @@
 use super::{Item, Scene};
 use crate::error::{Error, Result};
 use crate::geometry::{barycentric, orient2d, point_segment_distance, Point};
-use crate::grid::GridFrame;
+use crate::grid::{box_distance_squared, GridFrame};
 use kurbo::{Affine, BezPath, ParamCurveArclen, PathEl, Shape};
 
 /// Where a point sits in a mesh: a triangle and barycentric coordinates in it (they sum to one;
@@ -212,8 +212,7 @@ impl<'a> PointLocator<'a> {
                                 let [a, b, c] =
                                     self.triangles[i as usize].map(|v| self.points[v as usize]);
                                 let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-                                let gap = (lo - p).max(p - hi).max(Point::ZERO);
-                                if gap.length_squared() > reach(bd) * reach(bd) {
+                                if box_distance_squared(p, lo, hi) > reach(bd) * reach(bd) {
                                     continue;
                                 }
                             }
