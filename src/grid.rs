@@ -110,8 +110,12 @@ impl GridFrame {
         (x0, x1): (usize, usize),
         (y0, y1): (usize, usize),
     ) -> f64 {
-        let corner = |x: usize, y: usize| self.origin + Point::new(x as f64, y as f64) * self.cell;
-        box_distance_squared(p, corner(x0, y0), corner(x1 + 1, y1 + 1))
+        box_distance_squared(p, self.corner(x0, y0), self.corner(x1 + 1, y1 + 1))
+    }
+
+    /// The lower left corner of cell `(x, y)` (the upper right of cell `(x − 1, y − 1)`).
+    fn corner(&self, x: usize, y: usize) -> Point {
+        self.origin + Point::new(x as f64, y as f64) * self.cell
     }
 
     /// The distance from `p` to the nearest cell outside the square `x0..=x1 × y0..=y1`: the
@@ -124,9 +128,9 @@ impl GridFrame {
         (x0, x1): (usize, usize),
         (y0, y1): (usize, usize),
     ) -> f64 {
-        let (o, c, far) = (self.origin, self.cell, self.far);
-        let (left, right) = (o.x + x0 as f64 * c, o.x + (x1 + 1) as f64 * c);
-        let (low, high) = (o.y + y0 as f64 * c, o.y + (y1 + 1) as f64 * c);
+        let (o, far) = (self.origin, self.far);
+        let (lo, hi) = (self.corner(x0, y0), self.corner(x1 + 1, y1 + 1));
+        let (left, right, low, high) = (lo.x, hi.x, lo.y, hi.y);
         let mut beyond = f64::INFINITY;
         if x0 > 0 {
             beyond = beyond.min(box_distance(p, o, Point::new(left, far.y)));
