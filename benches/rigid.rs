@@ -57,6 +57,29 @@ fn sixteen_frames(it: &Interpolator) -> impl FnMut() -> Vec<Vec<Point>> + '_ {
     move || it.frames(black_box(&ts))
 }
 
+/// The memory floor of a lone frame: a buffer of the factor's size (`factor_bytes`) read as
+/// a frame's two triangular solves read the factor, forward and then back from its end, with no
+/// arithmetic between the reads that waits on them. Where the factor outgrows the caches (the
+/// 100k-vertex grid's is about 50 MB), no lone frame on one core can beat this (issue 16).
+fn factor_reads(bytes: usize) -> impl FnMut() -> u64 {
+    let words: Vec<u64> = (0..bytes.div_ceil(8) as u64).collect();
+    move || {
+        // Eight running sums, so the reads, not the additions, set the pace.
+        let mut sum = [0u64; 8];
+        for chunk in words.chunks_exact(8) {
+            for (s, &w) in sum.iter_mut().zip(chunk) {
+                *s = s.wrapping_add(w);
+            }
+        }
+        for chunk in words.rchunks_exact(8) {
+            for (s, &w) in sum.iter_mut().zip(chunk) {
+                *s ^= w;
+            }
+        }
+        black_box(sum.iter().fold(0, |a, &s| a ^ s))
+    }
+}
+
 fn bench(c: &mut Criterion) {
     for (nx, ny) in [(27, 26), (32, 32), (100, 100), (317, 316)] {
         let (src, tris) = grid(nx, ny);
@@ -84,6 +107,10 @@ fn bench(c: &mut Criterion) {
                 let mut sixteen = sixteen_frames(&it);
                 g.bench_with_input(BenchmarkId::new("frames16-parallel/disc", n), &n, |b, _| {
                     b.iter(&mut sixteen)
+                });
+                let mut floor = factor_reads(it.factor_bytes());
+                g.bench_with_input(BenchmarkId::new("floor/disc", n), &n, |b, _| {
+                    b.iter(&mut floor)
                 });
             }
         }

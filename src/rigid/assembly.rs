@@ -348,11 +348,10 @@ impl FactoredSystem {
         }
     }
 
-    /// Nonzeros of the Cholesky factor (0 when every vertex is pinned): what a frame's solve
-    /// reads twice.
-    #[allow(dead_code)]
-    pub(crate) fn factor_nonzeros(&self) -> usize {
-        self.factor.as_ref().map_or(0, Factor::nonzeros)
+    /// Bytes of the Cholesky factor one pass of a frame's solve reads (0 when every vertex is
+    /// pinned); a frame makes two passes.
+    pub(crate) fn factor_bytes(&self) -> usize {
+        self.factor.as_ref().map_or(0, Factor::bytes)
     }
 
     /// Clears the right-hand side (for callers that fill it row by row, e.g. with extra rows).

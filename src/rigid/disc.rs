@@ -563,6 +563,11 @@ impl DiscRigid {
         self.system.vertex_count()
     }
 
+    /// Bytes of the factor one pass of a frame's solve reads.
+    pub(crate) fn factor_bytes(&self) -> usize {
+        self.system.factor_bytes()
+    }
+
     /// Mean consistent rotation angle of point `i`'s disc (radians).
     pub(crate) fn rotation_at(&self, i: usize) -> f64 {
         self.rotation[i]

@@ -109,9 +109,15 @@ impl Factor {
         })
     }
 
-    /// Nonzeros of `L`, its diagonal included.
-    pub(super) fn nonzeros(&self) -> usize {
-        self.values.len() + self.inv_diag.len()
+    /// Bytes one pass of a lone solve reads: every entry below the diagonal (an `f64` value
+    /// and a `u32` row), the column starts and the inverted diagonal. Each frame reads them
+    /// twice, so at large meshes this sets the frame's floor ([`crate::rigid::Interpolator::factor_bytes`]).
+    pub(super) fn bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.values.len() * size_of::<f64>()
+            + self.rows.len() * size_of::<u32>()
+            + self.col_ptr.len() * size_of::<u32>()
+            + self.inv_diag.len() * size_of::<f64>()
     }
 
     /// Overwrites `b` (the first `n` rows, in the factor's ordering) with `(L Lᵀ)⁻¹ b`: a

@@ -479,6 +479,19 @@ impl Interpolator {
             Kind::Triangle(_, a) | Kind::Linear(_, _, a) => a[i],
         }
     }
+
+    /// Bytes of the factored system a frame's triangular solves read per pass (0 for the
+    /// linear method, which solves nothing); a frame makes two passes. At large meshes these
+    /// reads set a lone frame's floor: at the memory bandwidth of the machine, no frame is
+    /// faster than reading twice this many bytes (issue 16; `benches/rigid.rs` measures that
+    /// floor beside the frame).
+    pub fn factor_bytes(&self) -> usize {
+        match &self.kind {
+            Kind::Disc(d) => d.factor_bytes(),
+            Kind::Triangle(tr, _) => tr.factor_bytes(),
+            Kind::Linear(..) => 0,
+        }
+    }
 }
 
 /// Frames at every `t` of `ts`, in parallel when there is enough work

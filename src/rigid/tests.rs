@@ -108,6 +108,31 @@ fn end_frames_reproduce_source_and_target() {
     }
 }
 
+/// `factor_bytes` counts the factor a frame reads: nothing for the linear method; for the
+/// solving methods at least the 12 bytes (value and row) of every off-diagonal entry of the
+/// matrix's lower half, which the factor keeps (fill only adds), and more on a larger mesh.
+#[test]
+fn factor_bytes_count_at_least_the_matrix_entries() {
+    let bytes = |nx: usize, m: Method| {
+        let (src, tris) = grid(nx, nx, 1.0);
+        let tgt = bend(&src, nx as f64 - 1.0, 0.8, 0.3);
+        Interpolator::new(m, &src, &tgt, &tris)
+            .unwrap()
+            .factor_bytes()
+    };
+    assert_eq!(bytes(6, Method::Linear), 0);
+    // A grid of nx² vertices has 3·(nx − 1)² + 2·(nx − 1) edges; the disc method's matrix
+    // links every two vertices of a disc, so each edge is an entry of its lower half.
+    let edges = |nx: usize| 3 * (nx - 1) * (nx - 1) + 2 * (nx - 1);
+    for nx in [6, 12] {
+        let disc = bytes(nx, Method::Disc);
+        assert!(disc >= 12 * edges(nx) / 2, "{nx}: {disc} bytes");
+        assert!(disc <= 12 * nx.pow(4), "{nx}: {disc} bytes");
+    }
+    assert!(bytes(12, Method::Disc) > 2 * bytes(6, Method::Disc));
+    assert!(bytes(12, Method::Triangle) > bytes(6, Method::Triangle));
+}
+
 #[test]
 fn a_workspace_of_another_interpolator_is_remade_not_a_panic() {
     // A library user's slip: the workspace of a smaller mesh, or of another method.

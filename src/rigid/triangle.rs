@@ -131,6 +131,11 @@ impl TriangleRigid {
         })
     }
 
+    /// Bytes of the factor one pass of a frame's solve reads.
+    pub(crate) fn factor_bytes(&self) -> usize {
+        self.system.factor_bytes()
+    }
+
     pub(crate) fn scratch(&self) -> FrameScratch {
         FrameScratch::new(&self.system, self.centroid_source.len(), self.terms.len())
     }
