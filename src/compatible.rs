@@ -10,7 +10,9 @@ use crate::correspondence::{
 };
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
-use crate::mapping::{composite_map_reusing, Attachments, MappingOptions, MappingStats};
+use crate::mapping::{
+    check_curves, composite_map_reusing, Attachments, CurveCheck, MappingOptions, MappingStats,
+};
 use crate::mesh::{CompatibleMeshes, Side};
 use crate::rigid::{Chain, DiscSetup, Interpolator, Method};
 use crate::tolerance::Tolerances;
@@ -271,9 +273,13 @@ pub(crate) fn build_accepted_from<T>(
     accept: impl Fn(&Compatible, Option<&Interpolator>) -> Result<T>,
 ) -> Result<(Compatible, T)> {
     let fix = |e| name_files(e, source, target);
+    let model = match check_curves(&pairs, &tol, &opts.mapping, opts.triangulated, made) {
+        CurveCheck::Fails(e) => return Err(fix(e)),
+        CurveCheck::Try(model) => model,
+    };
     let tri = triangulate(&pairs, &tol, opts.triangulated).map_err(fix)?;
     let (meshes, stats) =
-        composite_map_reusing(&tri, &pairs, &tol, &opts.mapping, made).map_err(fix)?;
+        composite_map_reusing(&tri, &pairs, &tol, &opts.mapping, made, model).map_err(fix)?;
     let plain = Compatible {
         meshes,
         pairs,

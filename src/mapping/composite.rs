@@ -11,7 +11,9 @@
 //! step that needed no untangling, or two accepted steps in a row, the step doubles back. When
 //! the BSM path cannot be followed, the same walk is tried with the BSM's features carried by
 //! its boundary ([`ShapeModel::carried`]: features in a bending arm swing with it), then with
-//! straight-line curves. Finally, triangles that the steps left much thinner than they were get
+//! straight-line curves (with features, only where those do not cross halfway). Where every
+//! path's curves cross at its first map, the map fails on the curves alone, before any
+//! triangulation (`check_curves`). Finally, triangles that the steps left much thinner than they were get
 //! their free vertices moved to improve their shapes (`untangle.rs`), never flipping one.
 //! When the curves' spatial relation changes between source and target — a feature passing
 //! through another or through the boundary, the limitation of the paper's Fig.16 — no flip-free
@@ -134,21 +136,26 @@ pub fn composite_map(
     tol: &Tolerances,
     opts: &MappingOptions,
 ) -> Result<(CompatibleMeshes, MappingStats)> {
-    composite_map_reusing(tri, pairs, tol, opts, &mut Attachments::default())
+    composite_map_reusing(tri, pairs, tol, opts, &mut Attachments::default(), None)
 }
 
 /// [`composite_map`], with the carried features' attachments to the boundary taken from
 /// `made` where it holds them and kept there (issue 16: automatic mode maps the same curves
-/// from both sides and again after giving up each hole).
+/// from both sides and again after giving up each hole), and with the shape model that
+/// [`check_curves`] built for the same curves, side and options, if it did (it has validated
+/// the curves and checked the first step's too).
 pub(crate) fn composite_map_reusing(
     tri: &Triangulation,
     pairs: &[CurvePair],
     tol: &Tolerances,
     opts: &MappingOptions,
     made: &mut Attachments,
+    model: Option<Box<ShapeModel>>,
 ) -> Result<(CompatibleMeshes, MappingStats)> {
     let triangulated = tri.triangulated;
-    validate_curves(pairs, tol, triangulated.other())?;
+    if model.is_none() {
+        validate_curves(pairs, tol, triangulated.other())?;
+    }
     if tri.curves.len() != pairs.len()
         || tri
             .curves
@@ -174,15 +181,24 @@ pub(crate) fn composite_map_reusing(
         triangles: tri.triangles.len(),
         ..Default::default()
     };
-    let model = ShapeModel::new(pairs, triangulated)?;
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
+    // A model from `check_curves` comes with its first step's curves checked.
+    let (model, clear) = match model {
+        Some(m) => (*m, Some(step_end(h_bsm))),
+        None => (ShapeModel::new(pairs, triangulated)?, None),
+    };
     let untangler = Untangler::new(&tri.triangles, &fixed);
     let mut solver = Solver {
         harmonic: &mut harmonic,
         untangler: &untangler,
     };
     // Only the BSM path's failure is reported: the paths tried after it explain nothing.
-    let bsm = walk(tri, pairs, &model, h_bsm, &mut solver, opts, &mut stats)
+    let path = Path {
+        model: &model,
+        h_max: h_bsm,
+        clear,
+    };
+    let bsm = walk(tri, pairs, path, &mut solver, opts, &mut stats)
         .map_err(|stop| stop.explain(&model, pairs, tri));
     let (bsm, model) = match bsm {
         Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
@@ -190,7 +206,12 @@ pub(crate) fn composite_map_reusing(
             let carried = model.with_carried(made);
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
-            let r = walk(tri, pairs, &carried, h_bsm, &mut solver, opts, &mut stats);
+            let path = Path {
+                model: &carried,
+                h_max: h_bsm,
+                clear: None,
+            };
+            let r = walk(tri, pairs, path, &mut solver, opts, &mut stats);
             if r.is_ok() {
                 stats.path = Intermediates::Carried;
             }
@@ -201,11 +222,19 @@ pub(crate) fn composite_map_reusing(
     let current = match bsm {
         Ok(c) => c,
         Err(e) if e.is_input() && opts.last_resort == Intermediates::Straight => {
-            log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             let linear = model.into_linear();
+            if straight_lines_cross(&linear, pairs) {
+                return Err(e);
+            }
+            log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
-            let c = walk(tri, pairs, &linear, 1.0, &mut solver, opts, &mut stats).map_err(|_| e)?;
+            let path = Path {
+                model: &linear,
+                h_max: 1.0,
+                clear: None,
+            };
+            let c = walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.path = Intermediates::Straight;
             c
         }
@@ -237,6 +266,82 @@ pub(crate) fn composite_map_reusing(
         parts: None,
     };
     Ok((meshes, stats))
+}
+
+/// Whether the intermediate curves of `model` cross at `t` (left in `curves`).
+fn cross_at(model: &ShapeModel, pairs: &[CurvePair], t: f64, curves: &mut Vec<Vec<Point>>) -> bool {
+    model.curves_at(t, curves);
+    let refs: Vec<CurveRef<'_>> = curves
+        .iter()
+        .zip(pairs)
+        .map(|(c, p)| (c.as_slice(), p.closed))
+        .collect();
+    curves_cross(&refs)
+}
+
+/// Whether the straight-line path is left out: it has feature curves and its curves cross
+/// halfway. The straight walk starts with one whole step, the direct harmonic map to t = 1,
+/// and halves it when that map folds: its next map is at t = ½, where crossing curves stop
+/// the walk. With features, the direct map must also land every feature where the target
+/// has it, and on the random icon corpora (640 pairs) it never did where the straight lines
+/// cross halfway, while each attempt cost a triangulation and an untangling (issue 16: the
+/// slowest pairs give up holes one at a time). A boundary alone is still tried: its direct
+/// map does succeed sometimes (two corpus parts), and with it the part keeps a mesh.
+fn straight_lines_cross(linear: &ShapeModel, pairs: &[CurvePair]) -> bool {
+    pairs.len() > 1 && cross_at(linear, pairs, 0.5, &mut Vec::new())
+}
+
+/// What the curves alone tell of a composite map ([`check_curves`]).
+pub(crate) enum CurveCheck {
+    /// The map fails with this error, whatever the triangulation.
+    Fails(Error),
+    /// A map has to be tried, with this barycenter-based shape model when it was built (give
+    /// it to [`composite_map_reusing`]).
+    Try(Option<Box<ShapeModel>>),
+}
+
+/// Whether [`composite_map_reusing`] fails for `pairs` triangulated on side `triangulated`
+/// whatever the triangulation: every path's curves cross where its first map would go (the
+/// BSM's and the carried features' at the first step, the straight lines halfway, see
+/// [`straight_lines_cross`]), and it returns the error the map would. Callers then skip the
+/// triangulation (issue 16: automatic mode gives up holes one at a time, and the rungs whose
+/// holes cross at once spent most of their time triangulating). Curves that fail the checks
+/// the map starts with are left to it (the triangulation reports those first).
+pub(crate) fn check_curves(
+    pairs: &[CurvePair],
+    tol: &Tolerances,
+    opts: &MappingOptions,
+    triangulated: Side,
+    made: &mut Attachments,
+) -> CurveCheck {
+    if opts.max_steps == 0 || validate_curves(pairs, tol, triangulated.other()).is_err() {
+        return CurveCheck::Try(None);
+    }
+    let Ok(model) = ShapeModel::new(pairs, triangulated) else {
+        return CurveCheck::Try(None);
+    };
+    let first = step_end(1.0 / opts.initial_steps.max(1) as f64);
+    let mut curves = Vec::new();
+    if !cross_at(&model, pairs, first, &mut curves) {
+        return CurveCheck::Try(Some(Box::new(model)));
+    }
+    // As the walk's `Stop::Crossing` explains itself.
+    let e = failure(&model, pairs, first, &mut curves, "");
+    let model = if pairs.len() > 1 && opts.last_resort >= Intermediates::Carried {
+        let carried = model.with_carried(made);
+        if !cross_at(&carried, pairs, first, &mut curves) {
+            return CurveCheck::Try(None);
+        }
+        carried
+    } else {
+        model
+    };
+    if opts.last_resort == Intermediates::Straight
+        && !straight_lines_cross(&model.into_linear(), pairs)
+    {
+        return CurveCheck::Try(None);
+    }
+    CurveCheck::Fails(e)
 }
 
 /// The free-vertex placement of one step: the harmonic map, untangled locally where it folds.
@@ -278,13 +383,32 @@ impl Stop {
     }
 }
 
-/// Follows the intermediate curves of `model` from t = 0 to 1 with adaptive steps no longer
-/// than `h_max`; returns the vertex positions at t = 1.
+/// One family of intermediate curves for [`walk`] to follow.
+#[derive(Clone, Copy)]
+struct Path<'m> {
+    model: &'m ShapeModel,
+    /// The largest step.
+    h_max: f64,
+    /// A time whose curves are known not to cross ([`check_curves`] checked the first step's).
+    clear: Option<f64>,
+}
+
+/// The time a map one step ahead goes to (`t + h` given): 1 when within 1e-12 of it, so
+/// that the last step lands exactly on the target curves.
+fn step_end(t_plus_h: f64) -> f64 {
+    if t_plus_h >= 1.0 - 1e-12 {
+        1.0
+    } else {
+        t_plus_h
+    }
+}
+
+/// Follows the intermediate curves of `path` from t = 0 to 1 with adaptive steps no longer
+/// than its `h_max`; returns the vertex positions at t = 1.
 fn walk(
     tri: &Triangulation,
     pairs: &[CurvePair],
-    model: &ShapeModel,
-    h_max: f64,
+    path: Path<'_>,
     solver: &mut Solver<'_>,
     opts: &MappingOptions,
     stats: &mut MappingStats,
@@ -297,27 +421,20 @@ fn walk(
     let mut curves: Vec<Vec<Point>> = Vec::new();
     let min_step = opts.min_step.max(f64::EPSILON);
     let (mut t, mut maps) = (0.0f64, 0usize);
-    let mut step = Step::new(h_max);
+    let (model, mut step) = (path.model, Step::new(path.h_max));
     while t < 1.0 {
         if maps >= opts.max_steps {
             return Err(Stop::TooManyMaps { t: t + step.h });
         }
         maps += 1;
-        let t1 = if t + step.h >= 1.0 - 1e-12 {
-            1.0
-        } else {
-            t + step.h
-        };
-        model.curves_at(t1, &mut curves);
-        let crossing = {
-            let refs: Vec<CurveRef<'_>> = curves
-                .iter()
-                .zip(pairs)
-                .map(|(c, p)| (c.as_slice(), p.closed))
-                .collect();
-            curves_cross(&refs)
-        };
+        let t1 = step_end(t + step.h);
         // Curves that cross at t1 block this path whatever the step: the walk must pass t1.
+        let crossing = if path.clear == Some(t1) {
+            model.curves_at(t1, &mut curves);
+            false
+        } else {
+            cross_at(model, pairs, t1, &mut curves)
+        };
         if crossing {
             stats.rejected_steps += 1;
             return Err(Stop::Crossing { t: t1 });

@@ -18,7 +18,7 @@ pub mod shape_model;
 mod untangle;
 
 pub(crate) use carried::Attachments;
-pub(crate) use composite::composite_map_reusing;
+pub(crate) use composite::{check_curves, composite_map_reusing, CurveCheck};
 pub use composite::{composite_map, Intermediates, MappingOptions, MappingStats};
 pub use harmonic::Harmonic;
 pub(crate) use relax::relax_towards;

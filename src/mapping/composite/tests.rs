@@ -257,6 +257,76 @@ fn features_that_swap_sides_are_reported_by_name() {
     println!("{msg}");
 }
 
+/// Two round features filling most of a strip's height trade places: a quarter of the way,
+/// the BSM's and the carried features' curves cross the boundary, and halfway the straight
+/// lines' cross each other.
+fn features_trading_places() -> Vec<CurvePair> {
+    let b = subdivided(&[p(0., 0.), p(10., 0.), p(10., 2.), p(0., 2.)], 20);
+    let mut pairs = vec![
+        pair("boundary", true, b),
+        pair("feature-left", true, circle(p(4., 1.), 0.8, 16)),
+        pair("feature-right", true, circle(p(6., 1.), 0.8, 16)),
+    ];
+    pairs[1].target = circle(p(6., 1.), 0.8, 16);
+    pairs[2].target = circle(p(4., 1.), 0.8, 16);
+    pairs
+}
+
+#[test]
+fn curves_that_cross_at_once_fail_without_a_triangulation_as_they_fail_with_one() {
+    let pairs = features_trading_places();
+    let tol = Tolerances::new(diagonal(&pairs), 1.0);
+    let opts = MappingOptions::default();
+    for side in [Side::Source, Side::Target] {
+        let checked = check_curves(&pairs, &tol, &opts, side, &mut Attachments::default());
+        let CurveCheck::Fails(e) = checked else {
+            panic!("{side:?}: the crossing was not found on the curves alone");
+        };
+        let tri = triangulate(&pairs, &tol, side).unwrap();
+        let mapped = composite_map(&tri, &pairs, &tol, &opts).unwrap_err();
+        assert_eq!(e.to_string(), mapped.to_string());
+        assert_eq!(e.curves(), mapped.curves());
+        assert!(e.curves().contains(&"feature-left".to_string()), "{e}");
+    }
+}
+
+#[test]
+fn a_map_given_the_checked_model_is_the_map_without_it() {
+    let pairs = bent_strip(20.0, 2, PI);
+    let tol = Tolerances::new(diagonal(&pairs), 1.0);
+    let opts = MappingOptions::default();
+    let made = &mut Attachments::default();
+    let CurveCheck::Try(Some(model)) = check_curves(&pairs, &tol, &opts, Side::Source, made) else {
+        panic!("a strip that bends without crossing was not left to the map");
+    };
+    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
+    let (with, _) = composite_map_reusing(&tri, &pairs, &tol, &opts, made, Some(model)).unwrap();
+    let (without, _) = composite_map(&tri, &pairs, &tol, &opts).unwrap();
+    let bits = |v: &[Point]| {
+        v.iter()
+            .map(|q| (q.x.to_bits(), q.y.to_bits()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&with.target), bits(&without.target));
+}
+
+#[test]
+fn straight_lines_are_left_out_only_with_features_that_cross_halfway() {
+    let pairs = features_trading_places();
+    let linear = |pairs: &[CurvePair]| ShapeModel::linear(pairs, Side::Source).unwrap();
+    assert!(straight_lines_cross(&linear(&pairs), &pairs));
+    // A boundary alone is tried even where its straight lines cross halfway (a half turn
+    // takes every point through the centre), and so are features that keep their places.
+    let mut turned = pairs[..1].to_vec();
+    turned[0].target = turned[0].source.iter().map(|&q| p(10., 2.) - q).collect();
+    assert!(cross_at(&linear(&turned), &turned, 0.5, &mut Vec::new()));
+    assert!(!straight_lines_cross(&linear(&turned), &turned));
+    let mut kept = pairs.clone();
+    kept[1].target = kept[1].source.clone();
+    kept[2].target = kept[2].source.clone();
+    assert!(!straight_lines_cross(&linear(&kept), &kept));
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
 
