@@ -238,14 +238,7 @@ fn mapping_from_the_target_side() {
 
 #[test]
 fn features_that_swap_sides_are_reported_by_name() {
-    let b = subdivided(&[p(0., 0.), p(10., 0.), p(10., 1.), p(0., 1.)], 20);
-    let mut pairs = vec![
-        pair("boundary", true, b),
-        pair("feature-left", true, circle(p(3., 0.5), 0.3, 10)),
-        pair("feature-right", true, circle(p(7., 0.5), 0.3, 10)),
-    ];
-    pairs[1].target = circle(p(7., 0.5), 0.3, 10);
-    pairs[2].target = circle(p(3., 0.5), 0.3, 10);
+    let pairs = trading_places(1.0, [3.0, 7.0], 0.3, 10);
     let e = map(&pairs, false).unwrap_err();
     assert!(e.is_input());
     let msg = e.to_string();
@@ -257,19 +250,26 @@ fn features_that_swap_sides_are_reported_by_name() {
     println!("{msg}");
 }
 
+/// A strip 10 long and `height` high whose two round features (centres at `xs` on its
+/// midline, `radius`, `points` vertices each) trade places.
+fn trading_places(height: f64, xs: [f64; 2], radius: f64, points: usize) -> Vec<CurvePair> {
+    let b = subdivided(&[p(0., 0.), p(10., 0.), p(10., height), p(0., height)], 20);
+    let round = |x: f64| circle(p(x, height / 2.0), radius, points);
+    let mut pairs = vec![
+        pair("boundary", true, b),
+        pair("feature-left", true, round(xs[0])),
+        pair("feature-right", true, round(xs[1])),
+    ];
+    pairs[1].target = round(xs[1]);
+    pairs[2].target = round(xs[0]);
+    pairs
+}
+
 /// Two round features filling most of a strip's height trade places: a quarter of the way,
 /// the BSM's and the carried features' curves cross the boundary, and halfway the straight
 /// lines' cross each other.
 fn features_trading_places() -> Vec<CurvePair> {
-    let b = subdivided(&[p(0., 0.), p(10., 0.), p(10., 2.), p(0., 2.)], 20);
-    let mut pairs = vec![
-        pair("boundary", true, b),
-        pair("feature-left", true, circle(p(4., 1.), 0.8, 16)),
-        pair("feature-right", true, circle(p(6., 1.), 0.8, 16)),
-    ];
-    pairs[1].target = circle(p(6., 1.), 0.8, 16);
-    pairs[2].target = circle(p(4., 1.), 0.8, 16);
-    pairs
+    trading_places(2.0, [4.0, 6.0], 0.8, 16)
 }
 
 #[test]
