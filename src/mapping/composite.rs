@@ -141,19 +141,19 @@ pub fn composite_map(
 
 /// [`composite_map`], with the carried features' attachments to the boundary taken from
 /// `made` where it holds them and kept there (issue 16: automatic mode maps the same curves
-/// from both sides and again after giving up each hole), and with the shape model that
-/// [`check_curves`] built for the same curves, side and options, if it did (it has validated
-/// the curves and checked the first step's too).
+/// from both sides and again after giving up each hole), and with what [`check_curves`]
+/// found for the same curves, side and options, if it checked them (it has validated them,
+/// and its findings spare the walks' first checks).
 pub(crate) fn composite_map_reusing(
     tri: &Triangulation,
     pairs: &[CurvePair],
     tol: &Tolerances,
     opts: &MappingOptions,
     made: &mut Attachments,
-    model: Option<Box<ShapeModel>>,
+    checked: Option<Box<Checked>>,
 ) -> Result<(CompatibleMeshes, MappingStats)> {
     let triangulated = tri.triangulated;
-    if model.is_none() {
+    if checked.is_none() {
         validate_curves(pairs, tol, triangulated.other())?;
     }
     if tri.curves.len() != pairs.len()
@@ -182,40 +182,64 @@ pub(crate) fn composite_map_reusing(
         ..Default::default()
     };
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
-    // A model from `check_curves` comes with its first step's curves checked.
-    let (model, clear) = match model {
-        Some(m) => (*m, Some(step_end(h_bsm))),
-        None => (ShapeModel::new(pairs, triangulated)?, None),
+    // Where `check_curves` checked the curves, the walks start from the path it hands on.
+    let (model, start, clear, mut crossed) = match checked.map(|c| *c) {
+        Some(c) => (c.model, c.path, Some(c.clear), c.crossed),
+        None => (
+            ShapeModel::new(pairs, triangulated)?,
+            Intermediates::Bsm,
+            None,
+            None,
+        ),
     };
     let untangler = Untangler::new(&tri.triangles, &fixed);
     let mut solver = Solver {
         harmonic: &mut harmonic,
         untangler: &untangler,
     };
-    // Only the BSM path's failure is reported: the paths tried after it explain nothing.
-    let path = Path {
-        model: &model,
-        h_max: h_bsm,
-        clear,
+    // A path `check_curves` found crossing at its first map is counted as its walk counts it.
+    let mut crossed_at_once = |stats: &mut MappingStats| {
+        stats.rejected_steps += 1;
+        crossed.take()
     };
-    let bsm = walk(tri, pairs, path, &mut solver, opts, &mut stats)
-        .map_err(|stop| stop.explain(&model, pairs, tri));
+    // Only the BSM path's failure is reported: the paths tried after it explain nothing.
+    let bsm = if start == Intermediates::Bsm {
+        let path = Path {
+            model: &model,
+            h_max: h_bsm,
+            clear,
+        };
+        walk(tri, pairs, path, &mut solver, opts, &mut stats)
+            .map_err(|stop| stop.explain(&model, pairs, tri))
+    } else {
+        Err(crossed_at_once(&mut stats).unwrap_or_else(|| {
+            Error::internal("composite map: a later path handed on without the BSM's error")
+        }))
+    };
     let (bsm, model) = match bsm {
         Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
             log::debug!("composite map: BSM path failed ({e}), trying carried features");
-            let carried = model.with_carried(made);
+            let carried = match start {
+                Intermediates::Bsm => model.with_carried(made),
+                _ => model,
+            };
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
-            let path = Path {
-                model: &carried,
-                h_max: h_bsm,
-                clear: None,
+            let r = if start == Intermediates::Straight {
+                crossed_at_once(&mut stats);
+                Err(())
+            } else {
+                let path = Path {
+                    model: &carried,
+                    h_max: h_bsm,
+                    clear: clear.filter(|_| start == Intermediates::Carried),
+                };
+                walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| ())
             };
-            let r = walk(tri, pairs, path, &mut solver, opts, &mut stats);
             if r.is_ok() {
                 stats.path = Intermediates::Carried;
             }
-            (r.map_err(|_| e), carried)
+            (r.map_err(|()| e), carried)
         }
         r => (r, model),
     };
@@ -223,7 +247,7 @@ pub(crate) fn composite_map_reusing(
         Ok(c) => c,
         Err(e) if e.is_input() && opts.last_resort == Intermediates::Straight => {
             let linear = model.into_linear();
-            if straight_lines_cross(&linear, pairs) {
+            if start != Intermediates::Straight && straight_lines_cross(&linear, pairs) {
                 return Err(e);
             }
             log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
@@ -232,7 +256,7 @@ pub(crate) fn composite_map_reusing(
             let path = Path {
                 model: &linear,
                 h_max: 1.0,
-                clear: None,
+                clear: clear.filter(|_| start == Intermediates::Straight),
             };
             let c = walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.path = Intermediates::Straight;
@@ -295,9 +319,21 @@ fn straight_lines_cross(linear: &ShapeModel, pairs: &[CurvePair]) -> bool {
 pub(crate) enum CurveCheck {
     /// The map fails with this error, whatever the triangulation.
     Fails(Error),
-    /// A map has to be tried, with this barycenter-based shape model when it was built (give
-    /// it to [`composite_map_reusing`]).
-    Try(Option<Box<ShapeModel>>),
+    /// A map has to be tried; what the check found, when it got that far (give it to
+    /// [`composite_map_reusing`]).
+    Try(Option<Box<Checked>>),
+}
+
+/// The first path a composite map has to walk, as [`check_curves`] found it.
+pub(crate) struct Checked {
+    /// The path: the BSM, or a later one when the paths before it cross at their first map.
+    path: Intermediates,
+    /// Its shape model (carried features or straight lines applied).
+    model: ShapeModel,
+    /// A time its curves do not cross at: its first map's (halfway, for straight lines).
+    clear: f64,
+    /// The error of the BSM path, when it crosses at its first map.
+    crossed: Option<Error>,
 }
 
 /// Whether [`composite_map_reusing`] fails for `pairs` triangulated on side `triangulated`
@@ -305,8 +341,9 @@ pub(crate) enum CurveCheck {
 /// BSM's and the carried features' at the first step, the straight lines halfway, see
 /// [`straight_lines_cross`]), and it returns the error the map would. Callers then skip the
 /// triangulation (issue 16: automatic mode gives up holes one at a time, and the rungs whose
-/// holes cross at once spent most of their time triangulating). Curves that fail the checks
-/// the map starts with are left to it (the triangulation reports those first).
+/// holes cross at once spent most of their time triangulating). Otherwise the first path to
+/// walk is handed on, so the map checks nothing twice. Curves that fail the checks the map
+/// starts with are left to it (the triangulation reports those first).
 pub(crate) fn check_curves(
     pairs: &[CurvePair],
     tol: &Tolerances,
@@ -321,25 +358,34 @@ pub(crate) fn check_curves(
         return CurveCheck::Try(None);
     };
     let first = step_end(1.0 / opts.initial_steps.max(1) as f64);
+    let start = |path, model, clear, crossed| {
+        CurveCheck::Try(Some(Box::new(Checked {
+            path,
+            model,
+            clear,
+            crossed,
+        })))
+    };
     let mut curves = Vec::new();
     if !cross_at(&model, pairs, first, &mut curves) {
-        return CurveCheck::Try(Some(Box::new(model)));
+        return start(Intermediates::Bsm, model, first, None);
     }
     // As the walk's `Stop::Crossing` explains itself.
     let e = failure(&model, pairs, first, &mut curves, "");
     let model = if pairs.len() > 1 && opts.last_resort >= Intermediates::Carried {
         let carried = model.with_carried(made);
         if !cross_at(&carried, pairs, first, &mut curves) {
-            return CurveCheck::Try(None);
+            return start(Intermediates::Carried, carried, first, Some(e));
         }
         carried
     } else {
         model
     };
-    if opts.last_resort == Intermediates::Straight
-        && !straight_lines_cross(&model.into_linear(), pairs)
-    {
-        return CurveCheck::Try(None);
+    if opts.last_resort == Intermediates::Straight {
+        let linear = model.into_linear();
+        if !straight_lines_cross(&linear, pairs) {
+            return start(Intermediates::Straight, linear, 0.5, Some(e));
+        }
     }
     CurveCheck::Fails(e)
 }

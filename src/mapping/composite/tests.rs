@@ -291,23 +291,36 @@ fn curves_that_cross_at_once_fail_without_a_triangulation_as_they_fail_with_one(
 }
 
 #[test]
-fn a_map_given_the_checked_model_is_the_map_without_it() {
-    let pairs = bent_strip(20.0, 2, PI);
-    let tol = Tolerances::new(diagonal(&pairs), 1.0);
-    let opts = MappingOptions::default();
-    let made = &mut Attachments::default();
-    let CurveCheck::Try(Some(model)) = check_curves(&pairs, &tol, &opts, Side::Source, made) else {
-        panic!("a strip that bends without crossing was not left to the map");
-    };
-    let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
-    let (with, _) = composite_map_reusing(&tri, &pairs, &tol, &opts, made, Some(model)).unwrap();
-    let (without, _) = composite_map(&tri, &pairs, &tol, &opts).unwrap();
-    let bits = |v: &[Point]| {
-        v.iter()
-            .map(|q| (q.x.to_bits(), q.y.to_bits()))
-            .collect::<Vec<_>>()
-    };
-    assert_eq!(bits(&with.target), bits(&without.target));
+fn a_map_given_what_the_check_found_is_the_map_without_it() {
+    // Bent by half a turn the BSM's first map is clear; curled by 1.8 turns its first map
+    // crosses and the carried features' is handed on.
+    for (bend, path) in [(PI, Intermediates::Bsm), (1.8 * PI, Intermediates::Carried)] {
+        let pairs = bent_strip(20.0, 2, bend);
+        let tol = Tolerances::new(diagonal(&pairs), 1.0);
+        let opts = MappingOptions::default();
+        let made = &mut Attachments::default();
+        let CurveCheck::Try(Some(checked)) = check_curves(&pairs, &tol, &opts, Side::Source, made)
+        else {
+            panic!("{bend}: a strip whose paths do not all cross at once was not left to the map");
+        };
+        assert_eq!(checked.path, path);
+        let tri = triangulate(&pairs, &tol, Side::Source).unwrap();
+        let with = composite_map_reusing(&tri, &pairs, &tol, &opts, made, Some(checked));
+        let without = composite_map(&tri, &pairs, &tol, &opts);
+        match (with, without) {
+            (Ok((a, sa)), Ok((b, sb))) => {
+                let bits = |v: &[Point]| {
+                    v.iter()
+                        .map(|q| (q.x.to_bits(), q.y.to_bits()))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(bits(&a.target), bits(&b.target), "{bend}");
+                assert_eq!(sa, sb, "{bend}");
+            }
+            (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{bend}"),
+            (a, b) => panic!("{bend}: {:?} against {:?}", a.map(|x| x.1), b.map(|x| x.1)),
+        }
+    }
 }
 
 #[test]
