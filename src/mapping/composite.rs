@@ -184,7 +184,7 @@ pub(crate) fn composite_map_reusing(
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
     // Where `check_curves` checked the curves, the walks start from the path it hands on.
     let (model, start, clear, mut crossed) = match checked.map(|c| *c) {
-        Some(c) => (c.model, c.path, Some(c.clear), c.crossed),
+        Some(c) => (c.model, c.path, c.clear, c.crossed),
         None => (
             ShapeModel::new(pairs, triangulated)?,
             Intermediates::Bsm,
@@ -330,8 +330,9 @@ pub(crate) struct Checked {
     path: Intermediates,
     /// Its shape model (carried features or straight lines applied).
     model: ShapeModel,
-    /// A time its curves do not cross at: its first map's (halfway, for straight lines).
-    clear: f64,
+    /// A time its curves were found not to cross at: its first map's (for straight lines,
+    /// halfway, checked only with features).
+    clear: Option<f64>,
     /// The error of the BSM path, when it crosses at its first map.
     crossed: Option<Error>,
 }
@@ -368,14 +369,14 @@ pub(crate) fn check_curves(
     };
     let mut curves = Vec::new();
     if !cross_at(&model, pairs, first, &mut curves) {
-        return start(Intermediates::Bsm, model, first, None);
+        return start(Intermediates::Bsm, model, Some(first), None);
     }
     // As the walk's `Stop::Crossing` explains itself.
     let e = failure(&model, pairs, first, &mut curves, "");
     let model = if pairs.len() > 1 && opts.last_resort >= Intermediates::Carried {
         let carried = model.with_carried(made);
         if !cross_at(&carried, pairs, first, &mut curves) {
-            return start(Intermediates::Carried, carried, first, Some(e));
+            return start(Intermediates::Carried, carried, Some(first), Some(e));
         }
         carried
     } else {
@@ -384,7 +385,9 @@ pub(crate) fn check_curves(
     if opts.last_resort == Intermediates::Straight {
         let linear = model.into_linear();
         if !straight_lines_cross(&linear, pairs) {
-            return start(Intermediates::Straight, linear, 0.5, Some(e));
+            // A lone boundary's halfway is not checked (`straight_lines_cross`).
+            let halfway = (pairs.len() > 1).then_some(0.5);
+            return start(Intermediates::Straight, linear, halfway, Some(e));
         }
     }
     CurveCheck::Fails(e)
