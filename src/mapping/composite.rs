@@ -182,8 +182,9 @@ pub(crate) fn composite_map_reusing(
         ..Default::default()
     };
     let h_bsm = 1.0 / opts.initial_steps.max(1) as f64;
-    // Where `check_curves` checked the curves, the walks start from the path it hands on.
-    let (model, start, clear, mut crossed) = match checked.map(|c| *c) {
+    // Where `check_curves` checked the curves, the walks start from the path it hands on,
+    // with the BSM's error when that path is a later one.
+    let (model, start, clear, crossed) = match checked.map(|c| *c) {
         Some(c) => (c.model, c.path, c.clear, c.crossed),
         None => (
             ShapeModel::new(pairs, triangulated)?,
@@ -192,29 +193,29 @@ pub(crate) fn composite_map_reusing(
             None,
         ),
     };
+    // The time the check found clear, on the path it found it on.
+    let clear_on = |path| clear.filter(|_| start == path);
     let untangler = Untangler::new(&tri.triangles, &fixed);
     let mut solver = Solver {
         harmonic: &mut harmonic,
         untangler: &untangler,
     };
-    // A path `check_curves` found crossing at its first map is counted as its walk counts it.
-    let mut crossed_at_once = |stats: &mut MappingStats| {
-        stats.rejected_steps += 1;
-        crossed.take()
-    };
-    // Only the BSM path's failure is reported: the paths tried after it explain nothing.
-    let bsm = if start == Intermediates::Bsm {
-        let path = Path {
-            model: &model,
-            h_max: h_bsm,
-            clear,
-        };
-        walk(tri, pairs, path, &mut solver, opts, &mut stats)
-            .map_err(|stop| stop.explain(&model, pairs, tri))
-    } else {
-        Err(crossed_at_once(&mut stats).unwrap_or_else(|| {
-            Error::internal("composite map: a later path handed on without the BSM's error")
-        }))
+    // Only the BSM path's failure is reported: the paths tried after it explain nothing. A
+    // path the check found crossing at its first map counts that map as its walk would.
+    let bsm = match crossed {
+        None => {
+            let path = Path {
+                model: &model,
+                h_max: h_bsm,
+                clear: clear_on(Intermediates::Bsm),
+            };
+            walk(tri, pairs, path, &mut solver, opts, &mut stats)
+                .map_err(|stop| stop.explain(&model, pairs, tri))
+        }
+        Some(e) => {
+            stats.rejected_steps += 1;
+            Err(e)
+        }
     };
     let (bsm, model) = match bsm {
         Err(e) if e.is_input() && pairs.len() > 1 && opts.last_resort >= Intermediates::Carried => {
@@ -226,13 +227,13 @@ pub(crate) fn composite_map_reusing(
             let abandoned = std::mem::take(&mut stats.steps);
             stats.rejected_steps += abandoned;
             let r = if start == Intermediates::Straight {
-                crossed_at_once(&mut stats);
+                stats.rejected_steps += 1;
                 Err(())
             } else {
                 let path = Path {
                     model: &carried,
                     h_max: h_bsm,
-                    clear: clear.filter(|_| start == Intermediates::Carried),
+                    clear: clear_on(Intermediates::Carried),
                 };
                 walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| ())
             };
@@ -253,10 +254,11 @@ pub(crate) fn composite_map_reusing(
             log::debug!("composite map: BSM paths failed ({e}), trying straight lines");
             stats.rejected_steps += std::mem::take(&mut stats.steps);
             // Starting with one whole step: the direct harmonic map, then straight-line halves.
+            // With features, halfway was found clear (by the curve check or just above).
             let path = Path {
                 model: &linear,
                 h_max: 1.0,
-                clear: clear.filter(|_| start == Intermediates::Straight),
+                clear: (pairs.len() > 1).then_some(0.5),
             };
             let c = walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.path = Intermediates::Straight;
@@ -333,7 +335,8 @@ pub(crate) struct Checked {
     /// A time its curves were found not to cross at: its first map's (for straight lines,
     /// halfway, checked only with features).
     clear: Option<f64>,
-    /// The error of the BSM path, when it crosses at its first map.
+    /// The error of the BSM path when it crosses at its first map (so exactly when `path` is a
+    /// later one).
     crossed: Option<Error>,
 }
 
