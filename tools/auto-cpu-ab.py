@@ -7,7 +7,9 @@ lists the pairs where they differ, so one run says both "how much faster" and "s
 
 Usage: python3 tools/auto-cpu-ab.py CORPUS_DIR OLD_CRMORPH NEW_CRMORPH
 (CORPUS_DIR as made by `node tools/corpus/draw.js`, with its pairs.json)."""
-import hashlib, json, os, subprocess, sys, tempfile
+import hashlib, json, os, signal, subprocess, sys, tempfile
+# Piped into `head`, end quietly when the reader has had enough instead of a BrokenPipe trace.
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
 root, old, new = sys.argv[1], sys.argv[2], sys.argv[3]
 pairs = json.load(open(os.path.join(root, 'pairs.json')))['pairs']

@@ -5,7 +5,9 @@ each output so two builds can be checked to give the same bytes.
 
 Usage: python3 tools/auto-cpu.py CORPUS_DIR CRMORPH_BINARY OUT.json
 (CORPUS_DIR as made by `node tools/corpus/draw.js`, with its pairs.json)."""
-import json, os, subprocess, sys, time
+import json, os, signal, subprocess, sys, time
+# Piped into `head`, end quietly when the reader has had enough instead of a BrokenPipe trace.
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 root = sys.argv[1]; exe = sys.argv[2]; out = sys.argv[3]
 # In a folder of its own: crmorph lists the output's folder once per run (stale temporaries),
 # so a crowded TMPDIR would add its own cost to every pair.
