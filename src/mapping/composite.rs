@@ -297,12 +297,17 @@ pub(crate) fn composite_map_reusing(
 /// Whether the intermediate curves of `model` cross at `t` (left in `curves`).
 fn cross_at(model: &ShapeModel, pairs: &[CurvePair], t: f64, curves: &mut Vec<Vec<Point>>) -> bool {
     model.curves_at(t, curves);
-    let refs: Vec<CurveRef<'_>> = curves
+    curves_cross(&curve_refs(curves, pairs))
+}
+
+/// Intermediate `curves` (one per pair) as the crossing tests take them, each closed or open
+/// as its pair is.
+fn curve_refs<'c>(curves: &'c [Vec<Point>], pairs: &[CurvePair]) -> Vec<CurveRef<'c>> {
+    curves
         .iter()
         .zip(pairs)
         .map(|(c, p)| (c.as_slice(), p.closed))
-        .collect();
-    curves_cross(&refs)
+        .collect()
 }
 
 /// Whether the straight-line path is left out: it has feature curves and its curves cross
@@ -642,12 +647,7 @@ fn crossing_names(
     curves: &mut Vec<Vec<Point>>,
 ) -> Option<(String, Vec<String>)> {
     model.curves_at(t.min(1.0), curves);
-    let refs: Vec<CurveRef<'_>> = curves
-        .iter()
-        .zip(pairs)
-        .map(|(c, p)| (c.as_slice(), p.closed))
-        .collect();
-    let crossing = crossing_curves(&refs);
+    let crossing = crossing_curves(&curve_refs(curves, pairs));
     if crossing.is_empty() {
         return None;
     }
