@@ -125,9 +125,9 @@ impl Compatible {
 /// counts as folding nowhere: most meshes fold in no frame, so the odd k/64 are read only for
 /// meshes that fold at all, which halves the check on the others (issue 16). On the 640 pairs
 /// of the two random icon corpora every pick, and so every output, stayed the same.
-fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize) -> usize {
+fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize, unfolded: &[f64]) -> usize {
     let at_a_time = rayon::current_num_threads().max(1) * 2;
-    count_folded(at_a_time, enough, |ts| {
+    count_folded(at_a_time, enough, unfolded, |ts| {
         interp
             .frames(ts)
             .iter()
@@ -137,10 +137,19 @@ fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize) -> usize 
 }
 
 /// [`folded_frames`]'s sampling: `folded(ts)` counts the frames at `ts` that fold, asked
-/// `at_a_time` times at once, at t = k/32 first and at the odd k/64 only if one of those
-/// folded; the count stops once it reaches `enough`.
-fn count_folded(at_a_time: usize, enough: usize, mut folded: impl FnMut(&[f64]) -> usize) -> usize {
-    let coarse: Vec<f64> = (1..32).map(|k| k as f64 / 32.0).collect();
+/// `at_a_time` times at once, at t = k/32 first (those in `unfolded` left out: they fold
+/// nowhere) and at the odd k/64 only if one of those folded; the count stops once it reaches
+/// `enough`.
+fn count_folded(
+    at_a_time: usize,
+    enough: usize,
+    unfolded: &[f64],
+    mut folded: impl FnMut(&[f64]) -> usize,
+) -> usize {
+    let coarse: Vec<f64> = (1..32)
+        .map(|k| k as f64 / 32.0)
+        .filter(|t| !unfolded.contains(t))
+        .collect();
     let fine: Vec<f64> = (0..32).map(|k| (2 * k + 1) as f64 / 64.0).collect();
     let mut count = 0;
     for (is_fine, ts) in [(false, coarse), (true, fine)] {
@@ -244,6 +253,20 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
     build_accepted(source, target, opts, |_, _| Ok(())).map(|(c, ())| c)
 }
 
+/// What the `accept` check of [`build_accepted`] learnt of a mesh's motion on its way.
+pub(crate) trait MotionChecked {
+    /// Times t at which the check saw the mesh's disc interpolation, without fold repair,
+    /// invert no triangle. The fold count that picks the mesh reads repaired frames, and a
+    /// frame with no triangle inverted is one the repair leaves as it is, so it does not read
+    /// these again.
+    fn unfolded_at(&self) -> Vec<f64> {
+        Vec::new()
+    }
+}
+
+/// A check that looks at no frame.
+impl MotionChecked for () {}
+
 /// [`build`], then `accept` on the meshes it returns, given the disc interpolator that the
 /// fold check which chose them set up ([`Compatible::interpolator`]; `None` when it cannot be
 /// set up): automatic mode checks their motion further and reads its frames again rather than
@@ -255,7 +278,7 @@ pub fn build(source: &Drawing, target: &Drawing, opts: &MorphOptions) -> Result<
 /// with `accept` first: if it fails too, neither pick can be accepted and nothing is counted
 /// (the error is then the first mesh's). Otherwise the result is what `accept` makes of
 /// [`build`]'s mesh.
-pub(crate) fn build_accepted<T>(
+pub(crate) fn build_accepted<T: MotionChecked>(
     source: &Drawing,
     target: &Drawing,
     opts: &MorphOptions,
@@ -284,7 +307,7 @@ pub(crate) fn checked_curve_pairs(
 /// drawings and options (any [`MorphOptions::triangulated`]); the mapping's carried features
 /// take their attachments from `made` and keep them there for the next build of the same
 /// curves.
-pub(crate) fn build_accepted_from<T>(
+pub(crate) fn build_accepted_from<T: MotionChecked>(
     source: &Drawing,
     target: &Drawing,
     opts: &MorphOptions,
@@ -316,7 +339,7 @@ pub(crate) fn build_accepted_from<T>(
     // The harmonic map's own mesh unless its interpolation folds (`folds` frames) where the
     // relaxed one folds less (both after fold repair).
     let relaxed_is_picked = |r: &Compatible, motion: &Interpolator, folds: usize| {
-        folds > 0 && folded_frames(r, motion, folds) < folds
+        folds > 0 && folded_frames(r, motion, folds, &[]) < folds
     };
     let Ok(plain_motion) = plain.interpolator(Method::Disc) else {
         // No interpolation to check counts as folding everywhere: the relaxed mesh is better
@@ -334,7 +357,7 @@ pub(crate) fn build_accepted_from<T>(
                 return Err(e);
             };
             let x = accept(&r, Some(&i)).map_err(|_| e.clone())?;
-            let folds = folded_frames(&plain, &plain_motion, usize::MAX);
+            let folds = folded_frames(&plain, &plain_motion, usize::MAX, &[]);
             return if relaxed_is_picked(&r, &i, folds) {
                 Ok((r, x))
             } else {
@@ -342,7 +365,8 @@ pub(crate) fn build_accepted_from<T>(
             };
         }
     };
-    let folds = folded_frames(&plain, &plain_motion, usize::MAX);
+    let unfolded = plain_accepted.unfolded_at();
+    let folds = folded_frames(&plain, &plain_motion, usize::MAX, &unfolded);
     if folds == 0 {
         return Ok((plain, plain_accepted));
     }
@@ -358,6 +382,9 @@ mod tests {
     use crate::drawing::ReadOptions;
     use crate::mapping::composite_map;
 
+    /// The acceptance checks of these tests read no frames.
+    impl MotionChecked for usize {}
+
     /// The fold check's samples: what `count_folded` asked for, chunk by chunk, and its count,
     /// for frames that fold where `folds(t)` says.
     fn fold_check(
@@ -365,8 +392,18 @@ mod tests {
         enough: usize,
         folds: impl Fn(f64) -> bool,
     ) -> (Vec<Vec<f64>>, usize) {
+        fold_check_knowing(at_a_time, enough, &[], folds)
+    }
+
+    /// [`fold_check`] told that the frames at `unfolded` fold nowhere.
+    fn fold_check_knowing(
+        at_a_time: usize,
+        enough: usize,
+        unfolded: &[f64],
+        folds: impl Fn(f64) -> bool,
+    ) -> (Vec<Vec<f64>>, usize) {
         let mut asked = Vec::new();
-        let n = count_folded(at_a_time, enough, |ts| {
+        let n = count_folded(at_a_time, enough, unfolded, |ts| {
             asked.push(ts.to_vec());
             ts.iter().filter(|&&t| folds(t)).count()
         });
@@ -396,6 +433,22 @@ mod tests {
         // Folds between the coarse samples only are not seen: the check's stated rule.
         let (_, n) = fold_check(4, usize::MAX, |t| t == 7.0 / 64.0);
         assert_eq!(n, 0);
+    }
+
+    #[test]
+    fn frames_the_accept_check_saw_unfolded_are_not_read_again() {
+        let sixteenths: Vec<f64> = (1..16).map(|k| k as f64 / 16.0).collect();
+        let (asked, n) = fold_check_knowing(4, usize::MAX, &sixteenths, |_| false);
+        assert_eq!(n, 0);
+        let read: Vec<f64> = asked.concat();
+        let odd: Vec<f64> = (0..16).map(|k| (2 * k + 1) as f64 / 32.0).collect();
+        assert_eq!(read, odd);
+        // A fold at an odd k/32 still reads the odd k/64, and the count is the whole one.
+        let stretch = |t: f64| (0.53..0.56).contains(&t);
+        let (asked, n) = fold_check_knowing(4, usize::MAX, &sixteenths, stretch);
+        let all: Vec<f64> = (1..64).map(|k| k as f64 / 64.0).collect();
+        assert_eq!(n, all.iter().filter(|&&t| stretch(t)).count());
+        assert_eq!(asked.concat().len(), 16 + 32);
     }
 
     #[test]

@@ -18,7 +18,9 @@
 //! Holes that are not aligned as features still morph inside the shape (see
 //! [`super::geometric`]): carried by the mesh and blended along their own correspondence.
 
-use crate::compatible::{build_accepted_from, checked_curve_pairs, Compatible, MorphOptions};
+use crate::compatible::{
+    build_accepted_from, checked_curve_pairs, Compatible, MorphOptions, MotionChecked,
+};
 use crate::correspondence::{correspond, CorrespondenceOptions, Correspondences, CurvePair};
 use crate::drawing::{Anchor, ControlCurve, Drawing};
 use crate::error::{Error, ProblemKind, Result};
@@ -321,7 +323,7 @@ pub(crate) fn build_part(
             let checked =
                 build_accepted_from(&s, &t, &o, pairs.clone(), made, moves_without_folding);
             match checked {
-                Ok((c, repair)) => {
+                Ok((c, NeedsRepair(repair))) => {
                     let features = holes
                         .iter()
                         .enumerate()
@@ -428,7 +430,7 @@ pub(crate) fn build_part(
                 c.meshes.source.len()
             );
         }
-        if let Ok(repair) = r {
+        if let Ok(NeedsRepair(repair)) = r {
             return Ok(PartMesh {
                 meshes: c.meshes,
                 pairs: c.pairs,
@@ -464,6 +466,26 @@ pub(crate) fn build_part(
 /// busy, few enough that a failing mesh stops early.
 const FOLD_CHUNK: usize = 4;
 
+/// The times [`moves_without_folding`] reads plain frames at: t = k/16, k = 1…15.
+fn plain_check_times() -> Vec<f64> {
+    (1..16).map(|i| i as f64 / 16.0).collect()
+}
+
+/// What [`moves_without_folding`] found: whether the mesh's frames need the fold repair.
+#[derive(Debug, Clone, Copy)]
+struct NeedsRepair(bool);
+
+/// A mesh that needs no repair inverted no triangle in any plain frame the check read.
+impl MotionChecked for NeedsRepair {
+    fn unfolded_at(&self) -> Vec<f64> {
+        if self.0 {
+            Vec::new()
+        } else {
+            plain_check_times()
+        }
+    }
+}
+
 /// Checks that the disc-based rigid interpolation of `c` inverts no triangle at t = k/16
 /// (k = 1…15), and with the fold repair of `rigid::repair` when the plain frames fold a few, at
 /// t = k/64 (repaired folds come and go between samples): a mesh whose frames fold even so is
@@ -471,9 +493,9 @@ const FOLD_CHUNK: usize = 4;
 /// disc interpolation of `c` as [`Compatible::interpolator`] sets it up, when the caller has
 /// it: the checks read its frames without the repair, and with the repair of free vertices
 /// only, instead of setting up two more.
-fn moves_without_folding(c: &Compatible, motion: Option<&Interpolator>) -> Result<bool> {
+fn moves_without_folding(c: &Compatible, motion: Option<&Interpolator>) -> Result<NeedsRepair> {
     let m = &c.meshes;
-    let ts: Vec<f64> = (1..16).map(|i| i as f64 / 16.0).collect();
+    let ts = plain_check_times();
     // The first sample (in the order given) whose frame folds: a few frames at a time, in
     // parallel, stopping at the first chunk with a fold, so a mesh that fails costs a few
     // frames, not all of them.
@@ -509,13 +531,13 @@ fn moves_without_folding(c: &Compatible, motion: Option<&Interpolator>) -> Resul
         }
     };
     let Some((t, folded)) = folds(motion, Repair::Off, &ts) else {
-        return Ok(false);
+        return Ok(NeedsRepair(false));
     };
     // Nearest the plain fold first: where a repair fails, it fails there.
     let mut fine: Vec<f64> = (1..64).map(|i| i as f64 / 64.0).collect();
     fine.sort_by(|a, b| (a - t).abs().total_cmp(&(b - t).abs()).then(a.total_cmp(b)));
     match folds(motion, Repair::FreeOnly, &fine) {
-        None => Ok(true),
+        None => Ok(NeedsRepair(true)),
         Some((t2, left)) => Err(Error::input(
             "<auto>",
             format!(
