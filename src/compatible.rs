@@ -124,7 +124,9 @@ impl Compatible {
 /// [`build`] returns. The frames at k/32 come first, and a mesh that folds in none of them
 /// counts as folding nowhere: most meshes fold in no frame, so the odd k/64 are read only for
 /// meshes that fold at all, which halves the check on the others (issue 16). On the 640 pairs
-/// of the two random icon corpora every pick, and so every output, stayed the same.
+/// of the two random icon corpora every pick, and so every output, stayed the same. Times in
+/// `unfolded` are ones the caller saw no plain frame fold at ([`MotionChecked::unfolded_at`]):
+/// they are not read again.
 fn folded_frames(c: &Compatible, interp: &Interpolator, enough: usize, unfolded: &[f64]) -> usize {
     let at_a_time = rayon::current_num_threads().max(1) * 2;
     count_folded(at_a_time, enough, unfolded, |ts| {
