@@ -258,7 +258,7 @@ pub(crate) fn composite_map_reusing(
             let path = Path {
                 model: &linear,
                 h_max: 1.0,
-                clear: (pairs.len() > 1).then_some(0.5),
+                clear: straight_checked_at(pairs),
             };
             let c = walk(tri, pairs, path, &mut solver, opts, &mut stats).map_err(|_| e)?;
             stats.path = Intermediates::Straight;
@@ -319,7 +319,13 @@ fn curve_refs<'c>(curves: &'c [Vec<Point>], pairs: &[CurvePair]) -> Vec<CurveRef
 /// slowest pairs give up holes one at a time). A boundary alone is still tried: its direct
 /// map does succeed sometimes (two corpus parts), and with it the part keeps a mesh.
 fn straight_lines_cross(linear: &ShapeModel, pairs: &[CurvePair]) -> bool {
-    pairs.len() > 1 && cross_at(linear, pairs, 0.5, &mut Vec::new())
+    straight_checked_at(pairs).is_some_and(|t| cross_at(linear, pairs, t, &mut Vec::new()))
+}
+
+/// The time [`straight_lines_cross`] checks, and so finds clear when the straight path is
+/// walked: halfway, for curves with features; none for a lone boundary.
+fn straight_checked_at(pairs: &[CurvePair]) -> Option<f64> {
+    (pairs.len() > 1).then_some(0.5)
 }
 
 /// What the curves alone tell of a composite map ([`check_curves`]).
@@ -393,8 +399,7 @@ pub(crate) fn check_curves(
     if opts.last_resort == Intermediates::Straight {
         let linear = model.into_linear();
         if !straight_lines_cross(&linear, pairs) {
-            // A lone boundary's halfway is not checked (`straight_lines_cross`).
-            let halfway = (pairs.len() > 1).then_some(0.5);
+            let halfway = straight_checked_at(pairs);
             return start(Intermediates::Straight, linear, halfway, Some(e));
         }
     }
