@@ -166,13 +166,7 @@ fn lifted_through_cliques(angles: &[f64], cliques: &Cliques) -> Option<Vec<f64>>
     let (out, lifted) = lift_from_roots(
         angles,
         &root_of,
-        |v| {
-            cliques
-                .of(v)
-                .iter()
-                .flat_map(|&c| cliques.clique(c))
-                .copied()
-        },
+        |v| cliques.of(v).iter().map(|&c| cliques.clique(c)),
         light,
     );
     if lifted.contains(&false) {
@@ -272,21 +266,17 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
     lift_from_roots(
         angles,
         &root_of,
-        |v| {
-            adj[start[v as usize]..start[v as usize + 1]]
-                .iter()
-                .copied()
-        },
+        |v| std::iter::once(&adj[start[v as usize]..start[v as usize + 1]]),
         |_, _| true,
     )
     .0
 }
 
 /// A depth-first traversal from each root of `root_of` ([`roots`]) over the links that
-/// `neighbours` lists and `follow` takes, putting each node reached on the branch
-/// ([`nearest_branch`]) nearest to the node it was reached from. Returns the angles and which
-/// nodes were reached.
-fn lift_from_roots<I: Iterator<Item = u32>>(
+/// `neighbours` lists (as runs of nodes: a clique, a row of the tree) and `follow` takes,
+/// putting each node reached on the branch ([`nearest_branch`]) nearest to the node it was
+/// reached from. Returns the angles and which nodes were reached.
+fn lift_from_roots<'a, I: Iterator<Item = &'a [u32]>>(
     angles: &[f64],
     root_of: &[u32],
     neighbours: impl Fn(u32) -> I,
@@ -300,11 +290,13 @@ fn lift_from_roots<I: Iterator<Item = u32>>(
         stack.push(root);
         while let Some(v) = stack.pop() {
             let av = out[v as usize];
-            for u in neighbours(v) {
-                if !reached[u as usize] && follow(v, u) {
-                    reached[u as usize] = true;
-                    out[u as usize] = nearest_branch(angles[u as usize], av);
-                    stack.push(u);
+            for run in neighbours(v) {
+                for &u in run {
+                    if !reached[u as usize] && follow(v, u) {
+                        reached[u as usize] = true;
+                        out[u as usize] = nearest_branch(angles[u as usize], av);
+                        stack.push(u);
+                    }
                 }
             }
         }
