@@ -40,10 +40,11 @@ fn signed_area(points: &[Point], tri: [u32; 3]) -> f64 {
 }
 
 /// The directed edges of `triangles` (indices below `n`) whose reverse is not among them (each
-/// kept once per occurrence), sorted. Each vertex's outgoing edges are one sorted row, so the
-/// reverse of `(a, b)` is looked up in `b`'s few.
+/// kept once per occurrence), sorted. Each vertex's outgoing edges are one short row, so the
+/// reverse of `(a, b)` is looked up in `b`'s few; only the border found is sorted, not every
+/// row.
 fn border_edges(triangles: &[[u32; 3]], n: usize) -> Vec<(u32, u32)> {
-    let (start, to) = crate::mesh::sorted_rows(
+    let (start, to) = crate::mesh::compressed_rows(
         n,
         triangles
             .iter()
@@ -58,6 +59,7 @@ fn border_edges(triangles: &[[u32; 3]], n: usize) -> Vec<(u32, u32)> {
             }
         }
     }
+    border.sort_unstable();
     border
 }
 
@@ -237,6 +239,27 @@ mod tests {
             "{} vs {sum}",
             0.5 * twice[0]
         );
+    }
+
+    proptest::proptest! {
+        /// The border is every directed edge whose reverse no triangle has, once per
+        /// occurrence, sorted: what a scan of the whole edge list finds.
+        #[test]
+        fn border_edges_are_the_edges_without_a_reverse(
+            tris in proptest::collection::vec(proptest::array::uniform3(0u32..12), 0..40),
+        ) {
+            let all: Vec<(u32, u32)> = tris
+                .iter()
+                .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+                .collect();
+            let mut expected: Vec<(u32, u32)> = all
+                .iter()
+                .copied()
+                .filter(|&(a, b)| !all.contains(&(b, a)))
+                .collect();
+            expected.sort_unstable();
+            proptest::prop_assert_eq!(border_edges(&tris, 12), expected);
+        }
     }
 
     #[test]
