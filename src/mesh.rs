@@ -322,21 +322,48 @@ pub(crate) fn stars(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>
 
 /// One-ring neighbour lists (the "discs" of §4.1 for a triangulation), each sorted ascending.
 pub fn one_rings(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u32>> {
-    let edges = edges(triangles);
-    let mut degree = vec![0usize; vertex_count];
-    for &(a, b) in &edges {
-        degree[a as usize] += 1;
-        degree[b as usize] += 1;
+    let (start, rings) = ring_rows(triangles, vertex_count, std::iter::empty());
+    (0..vertex_count)
+        .map(|v| rings[start[v]..start[v + 1]].to_vec())
+        .collect()
+}
+
+/// [`one_rings`] in compressed rows, vertex `v`'s ring `rings[start[v]..start[v + 1]]`, with
+/// the pairs `links` (distinct, below `vertex_count`) joined both ways too, each neighbour
+/// once. One allocation instead of one per vertex, for a set-up that reads every ring once
+/// (issue 16).
+pub(crate) fn ring_rows(
+    triangles: &[[u32; 3]],
+    vertex_count: usize,
+    links: impl Iterator<Item = (u32, u32)>,
+) -> (Vec<usize>, Vec<u32>) {
+    let mut edges = edges(triangles);
+    let mesh_edges = edges.len();
+    edges.extend(links.map(|(a, b)| (a.min(b), a.max(b))));
+    if edges.len() > mesh_edges {
+        sort_pairs(&mut edges);
+        edges.dedup();
     }
-    let mut rings: Vec<Vec<u32>> = degree.into_iter().map(Vec::with_capacity).collect();
+    let mut start = vec![0usize; vertex_count + 1];
+    for &(a, b) in &edges {
+        start[a as usize + 1] += 1;
+        start[b as usize + 1] += 1;
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut rings = vec![0u32; start[vertex_count]];
     // The edges come sorted, so each ring receives its smaller neighbours (as the second
     // index of `(lo, v)`) in ascending order before its larger ones (as `(v, hi)`): every ring
     // is sorted as it is filled.
     for (a, b) in edges {
-        rings[a as usize].push(b);
-        rings[b as usize].push(a);
+        rings[fill[a as usize]] = b;
+        fill[a as usize] += 1;
+        rings[fill[b as usize]] = a;
+        fill[b as usize] += 1;
     }
-    rings
+    (start, rings)
 }
 
 /// A regular hexagon of unit radius about its centre (vertex 6), as six counter-clockwise
@@ -436,5 +463,11 @@ mod tests {
         let r = one_rings(&m.triangles, 4);
         assert_eq!(r[0], vec![1, 2, 3]);
         assert_eq!(r[1], vec![0, 2]);
+        // A link joins its two ends both ways, once even where the mesh has it already.
+        let (start, rings) = ring_rows(&m.triangles, 5, [(4, 1), (2, 0), (1, 4)].into_iter());
+        let row = |v: usize| &rings[start[v]..start[v + 1]];
+        assert_eq!(row(0), [1, 2, 3]);
+        assert_eq!(row(1), [0, 2, 4]);
+        assert_eq!(row(4), [1]);
     }
 }

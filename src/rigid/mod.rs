@@ -245,7 +245,6 @@ impl Interpolator {
         check_triangles(setup.triangles, n)?;
         let region = setup.area_region.unwrap_or(setup.triangles);
         check_triangles(region, n)?;
-        let mut rings = crate::mesh::one_rings(setup.triangles, n);
         // Closed chains are outlines without a mesh: the area rule measures them too, wound
         // counter-clockwise in the source.
         let mut cycles: Vec<(u32, u32)> = Vec::new();
@@ -262,20 +261,25 @@ impl Interpolator {
                 cycles.push(if forward { (a, b) } else { (b, a) });
             }
         }
+        // The chains' links join the discs of their ends, as mesh edges do.
+        let mut links: Vec<(u32, u32)> = Vec::new();
         for chain in setup.chains {
             let k = chain.vertices.len();
-            let links = if chain.closed { k } else { k.saturating_sub(1) };
-            for i in 0..links {
+            let count = if chain.closed { k } else { k.saturating_sub(1) };
+            for i in 0..count {
                 let (a, b) = (chain.vertices[i], chain.vertices[(i + 1) % k]);
                 if a as usize >= n || b as usize >= n || a == b {
                     return Err(Error::internal(format!(
                         "chain link {a}–{b} is not a pair of distinct points of {n}"
                     )));
                 }
-                rings[a as usize].push(b);
-                rings[b as usize].push(a);
+                links.push((a, b));
             }
         }
+        let (start, neighbours) = crate::mesh::ring_rows(setup.triangles, n, links.into_iter());
+        let rings: Vec<&[u32]> = (0..n)
+            .map(|v| &neighbours[start[v]..start[v + 1]])
+            .collect();
         let mut d = DiscRigid::with_area_rule(source, target, &rings, region, &cycles)?;
         if let Some(together) = setup.together {
             d.group_parts(together);
