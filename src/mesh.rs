@@ -250,7 +250,9 @@ where
     // `for_each`, not a `for` loop: entries are often a `flat_map`, which runs its inner
     // arrays far faster when it drives the loop itself.
     let mut start = vec![0usize; n + 1];
-    entries.clone().for_each(|(r, _)| start[r as usize + 1] += 1);
+    entries
+        .clone()
+        .for_each(|(r, _)| start[r as usize + 1] += 1);
     for r in 0..n {
         start[r + 1] += start[r];
     }
