@@ -908,6 +908,31 @@ impl DiscRigid {
 mod tests {
     use super::*;
 
+    /// Discs over `n` points from drawn pairs `(a, b)` (taken modulo `n`, a point paired with
+    /// itself dropped): `b` in `a`'s disc, and `a` in `b`'s too when `mirror`.
+    fn discs_of_pairs(raw: &[(u32, u32)], n: usize, mirror: bool) -> Vec<Vec<u32>> {
+        let mut discs = vec![Vec::new(); n];
+        for &(a, b) in raw {
+            let (a, b) = (a % n as u32, b % n as u32);
+            if a != b {
+                discs[a as usize].push(b);
+                if mirror {
+                    discs[b as usize].push(a);
+                }
+            }
+        }
+        discs
+    }
+
+    /// The pairs `(i, j)` of the discs as read, disc by disc.
+    fn pairs_of_discs(discs: &[Vec<u32>]) -> Vec<(u32, u32)> {
+        discs
+            .iter()
+            .enumerate()
+            .flat_map(|(i, d)| d.iter().map(move |&j| (i as u32, j)))
+            .collect()
+    }
+
     proptest::proptest! {
         /// The cursor check finds discs symmetric exactly when a binary search for every
         /// pair's reverse does: symmetric discs, the same with one neighbour taken out, and
@@ -919,16 +944,7 @@ mod tests {
             mirror in proptest::bool::ANY,
             drop in proptest::option::of(0usize..200),
         ) {
-            let mut discs = vec![Vec::new(); n];
-            for &(a, b) in &raw {
-                let (a, b) = (a % n as u32, b % n as u32);
-                if a != b {
-                    discs[a as usize].push(b);
-                    if mirror {
-                        discs[b as usize].push(a);
-                    }
-                }
-            }
+            let mut discs = discs_of_pairs(&raw, n, mirror);
             for d in &mut discs {
                 d.sort_unstable();
                 d.dedup();
@@ -938,11 +954,7 @@ mod tests {
                     d.remove(k % d.len());
                 }
             }
-            let directed: Vec<(u32, u32)> = discs
-                .iter()
-                .enumerate()
-                .flat_map(|(i, d)| d.iter().map(move |&j| (i as u32, j)))
-                .collect();
+            let directed = pairs_of_discs(&discs);
             let want = directed
                 .iter()
                 .all(|&(i, j)| discs[j as usize].binary_search(&i).is_ok());
@@ -958,16 +970,7 @@ mod tests {
             n in 2usize..40,
             symmetric in proptest::bool::ANY,
         ) {
-            let mut discs = vec![Vec::new(); n];
-            for &(a, b) in &raw {
-                let (a, b) = (a % n as u32, b % n as u32);
-                if a != b {
-                    discs[a as usize].push(b);
-                    if symmetric {
-                        discs[b as usize].push(a);
-                    }
-                }
-            }
+            let mut discs = discs_of_pairs(&raw, n, symmetric);
             if symmetric {
                 for d in &mut discs {
                     d.sort_unstable();
@@ -975,11 +978,7 @@ mod tests {
                 }
             }
             let ascending = discs.iter().all(|d| d.windows(2).all(|w| w[0] < w[1]));
-            let mut directed: Vec<(u32, u32)> = discs
-                .iter()
-                .enumerate()
-                .flat_map(|(i, d)| d.iter().map(move |&j| (i as u32, j)))
-                .collect();
+            let mut directed = pairs_of_discs(&discs);
             directed.sort_unstable();
             directed.dedup();
             let mut want: Vec<(u32, u32)> =
