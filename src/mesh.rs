@@ -346,26 +346,13 @@ pub(crate) fn ring_rows(
         sort_pairs(&mut edges);
         edges.dedup();
     }
-    let mut start = vec![0usize; vertex_count + 1];
-    for &(a, b) in &edges {
-        start[a as usize + 1] += 1;
-        start[b as usize + 1] += 1;
-    }
-    for v in 0..vertex_count {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut rings = vec![0u32; start[vertex_count]];
     // The edges come sorted, so each ring receives its smaller neighbours (as the second
     // index of `(lo, v)`) in ascending order before its larger ones (as `(v, hi)`): every ring
     // is sorted as it is filled.
-    for (a, b) in edges {
-        rings[fill[a as usize]] = b;
-        fill[a as usize] += 1;
-        rings[fill[b as usize]] = a;
-        fill[b as usize] += 1;
-    }
-    (start, rings)
+    compressed_rows(
+        vertex_count,
+        edges.iter().flat_map(|&(a, b)| [(a, b), (b, a)]),
+    )
 }
 
 /// A regular hexagon of unit radius about its centre (vertex 6), as six counter-clockwise
