@@ -13,6 +13,7 @@
 //! [`crate::rigid::disc`]); [`full_disc_graph`] builds the paper's literal graph so tests can
 //! check that both agree.
 
+use std::cell::Cell;
 use std::f64::consts::{PI, TAU};
 
 /// Makes `angles` consistent over the graph whose links are `links` (pairs of node indices):
@@ -163,11 +164,29 @@ fn lifted_through_cliques(angles: &[f64], cliques: &Cliques) -> Option<Vec<f64>>
     let root_of = roots(angles, &mut parent);
     drop(parent);
     let light = |a: u32, b: u32| turn_between(angles[a as usize], angles[b as usize]) < LIGHT;
+    // How many of each clique's nodes are still unreached. A clique whose nodes have all been
+    // reached has nothing more to give the walk, so it is not read again: each clique is then
+    // read about once rather than once from each of its nodes.
+    let unreached: Vec<Cell<u32>> = (0..cliques.len())
+        .map(|c| Cell::new(cliques.clique(c).len() as u32))
+        .collect();
     let (out, lifted) = lift_from_roots(
         angles,
         &root_of,
-        |v| cliques.of(v).iter().map(|&c| cliques.clique(c)),
+        |v| {
+            cliques
+                .of(v)
+                .iter()
+                .filter(|&&c| unreached[c as usize].get() > 0)
+                .map(|&c| cliques.clique(c))
+        },
         light,
+        |u| {
+            for &c in cliques.of(u) {
+                let left = &unreached[c as usize];
+                left.set(left.get() - 1);
+            }
+        },
     );
     if lifted.contains(&false) {
         return None; // the light links leave a part in pieces
@@ -268,6 +287,7 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
         &root_of,
         |v| std::iter::once(&adj[start[v as usize]..start[v as usize + 1]]),
         |_, _| true,
+        |_| {},
     )
     .0
 }
@@ -275,18 +295,21 @@ fn forest_from_keys(angles: &[f64], mut order: Vec<u128>) -> Vec<f64> {
 /// A depth-first traversal from each root of `root_of` ([`roots`]) over the links that
 /// `neighbours` lists (as runs of nodes: a clique, a row of the tree) and `follow` takes,
 /// putting each node reached on the branch ([`nearest_branch`]) nearest to the node it was
-/// reached from. Returns the angles and which nodes were reached.
+/// reached from, and telling `on_reach` of each node as it is reached (the roots too). Returns
+/// the angles and which nodes were reached.
 fn lift_from_roots<'a, I: Iterator<Item = &'a [u32]>>(
     angles: &[f64],
     root_of: &[u32],
     neighbours: impl Fn(u32) -> I,
     follow: impl Fn(u32, u32) -> bool,
+    on_reach: impl Fn(u32),
 ) -> (Vec<f64>, Vec<bool>) {
     let mut out = angles.to_vec();
     let mut reached = vec![false; angles.len()];
     let mut stack: Vec<u32> = Vec::new();
     for &root in root_of.iter().filter(|&&r| r != u32::MAX) {
         reached[root as usize] = true;
+        on_reach(root);
         stack.push(root);
         while let Some(v) = stack.pop() {
             let av = out[v as usize];
@@ -294,6 +317,7 @@ fn lift_from_roots<'a, I: Iterator<Item = &'a [u32]>>(
                 for &u in run {
                     if !reached[u as usize] && follow(v, u) {
                         reached[u as usize] = true;
+                        on_reach(u);
                         out[u as usize] = nearest_branch(angles[u as usize], av);
                         stack.push(u);
                     }
