@@ -8,10 +8,13 @@
 //!     target/release/examples/setup_count fixtures/u-to-s 20
 //! ```
 //!
-//! and divide the "Collected" count by N.
+//! and divide the "Collected" count by N. With a third argument `frames`, it sets up once and
+//! evaluates N lone frames at t = 0.37 instead, for counting a frame's instructions with
+//! `--toggle-collect='crmorph::rigid::Interpolator::at'`.
 
 use crmorph::compatible::{build, MorphOptions};
 use crmorph::drawing::{Drawing, ReadOptions};
+use crmorph::geometry::Point;
 use crmorph::rigid::{Interpolator, Method};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -19,7 +22,7 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let mut args = std::env::args().skip(1);
     let Some(dir) = args.next().map(PathBuf::from) else {
-        eprintln!("usage: setup_count FIXTURE_DIR [N]");
+        eprintln!("usage: setup_count FIXTURE_DIR [N] [frames]");
         return ExitCode::FAILURE;
     };
     let n: usize = match args.next().map(|s| s.parse()) {
@@ -45,20 +48,39 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    for _ in 0..n {
-        let it = Interpolator::new(
+    let frames = args.next().as_deref() == Some("frames");
+    let set_up = || {
+        Interpolator::new(
             Method::Disc,
             &meshes.source,
             &meshes.target,
             &meshes.triangles,
-        );
-        if let Err(e) = std::hint::black_box(it) {
-            eprintln!("setup_count: {e}");
-            return ExitCode::FAILURE;
+        )
+    };
+    if frames {
+        let it = match set_up() {
+            Ok(it) => it,
+            Err(e) => {
+                eprintln!("setup_count: {e}");
+                return ExitCode::FAILURE;
+            }
+        };
+        let (mut out, mut ws) = (vec![Point::ZERO; it.vertex_count()], it.workspace());
+        for _ in 0..n {
+            it.at(std::hint::black_box(0.37), &mut out, &mut ws);
+            std::hint::black_box(&out);
+        }
+    } else {
+        for _ in 0..n {
+            if let Err(e) = std::hint::black_box(set_up()) {
+                eprintln!("setup_count: {e}");
+                return ExitCode::FAILURE;
+            }
         }
     }
+    let what = if frames { "frames" } else { "set-ups" };
     println!(
-        "{} vertices, {n} set-ups of the disc method",
+        "{} vertices, {n} {what} of the disc method",
         meshes.source.len()
     );
     ExitCode::SUCCESS
