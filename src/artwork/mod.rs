@@ -38,6 +38,7 @@ pub use reach::{within_reach, FarPath, REACH};
 pub use scene::flatten_tolerance;
 pub(crate) use texture::RASTER_SPLIT;
 pub use texture::{DecodedImage, ImageGrid, ImagePiece, Texels};
+pub(crate) use warp::at_rest;
 
 #[cfg(test)]
 pub(crate) use bind::tests as bind_tests;

@@ -17,6 +17,22 @@ use crate::geometry::Point;
 use kurbo::{Affine, BezPath};
 use std::sync::Arc;
 
+/// Whether the mesh `frame_vertices` is the mesh `rest`: every vertex within `1e-9` of the
+/// diagonal of `rest` of its rest position. [`Binding::place`] gives the exact input scene for
+/// such a frame (t = 0 for the source, t = 1 for the target).
+pub(crate) fn at_rest(frame_vertices: &[Point], rest: &[Point]) -> bool {
+    if frame_vertices.len() != rest.len() {
+        return false;
+    }
+    let (lo, hi) =
+        crate::geometry::bounding_box(rest.iter().copied()).unwrap_or((Point::ZERO, Point::ZERO));
+    let eps = 1e-9 * (hi - lo).length();
+    frame_vertices
+        .iter()
+        .zip(rest)
+        .all(|(a, b)| a.distance(*b) <= eps)
+}
+
 impl Binding {
     /// The scene placed in the mesh whose vertex positions are `frame_vertices` (same order and
     /// count as the mesh the binding was made on). Paths come out as polylines. Warping with the
@@ -48,17 +64,8 @@ impl Binding {
     /// [`Binding::warp`] otherwise. Use [`Binding::warp`] where every frame needs the same path
     /// structure (animation keyframes).
     pub fn place(&self, frame_vertices: &[Point]) -> Result<Scene> {
-        if frame_vertices.len() == self.rest.len() {
-            let (lo, hi) = crate::geometry::bounding_box(self.rest.iter().copied())
-                .unwrap_or((Point::ZERO, Point::ZERO));
-            let eps = 1e-9 * (hi - lo).length();
-            let at_rest = frame_vertices
-                .iter()
-                .zip(&self.rest)
-                .all(|(a, b)| a.distance(*b) <= eps);
-            if at_rest {
-                return Ok(self.scene_with_rest_grids());
-            }
+        if at_rest(frame_vertices, &self.rest) {
+            return Ok(self.scene_with_rest_grids());
         }
         self.warp(frame_vertices)
     }
