@@ -64,6 +64,13 @@ impl Compatible {
         if method != Method::Disc {
             return Interpolator::new(method, &m.source, &m.target, &m.triangles);
         }
+        self.disc_interpolator(None)
+    }
+
+    /// The disc method's [`Compatible::interpolator`], reusing the factored matrix of `like`
+    /// when it was set up on the same connectivity ([`DiscSetup::system_of`]).
+    fn disc_interpolator(&self, like: Option<&Interpolator>) -> Result<Interpolator> {
+        let m = &self.meshes;
         let chains: Vec<Chain> = m
             .parts
             .iter()
@@ -113,6 +120,7 @@ impl Compatible {
                 together: together.as_deref(),
                 repair: (!repaired.is_empty()).then_some((&repaired[..], &on_curve[..])),
                 repair_curves: m.parts.is_none(),
+                system_of: like,
             },
         )
     }
@@ -332,10 +340,11 @@ pub(crate) fn build_accepted_from<T: MotionChecked>(
         tolerances: tol,
         area_region: None,
     };
-    let relaxed = || {
+    // The relaxed mesh has the mapped mesh's triangles, so it reuses its factored matrix.
+    let relaxed = |like: Option<&Interpolator>| {
         let mut r = plain.clone();
         relax_mapped(&mut r.meshes, opts.triangulated);
-        let motion = r.interpolator(Method::Disc);
+        let motion = r.disc_interpolator(like);
         (r, motion)
     };
     // The harmonic map's own mesh unless its interpolation folds (`folds` frames) where the
@@ -346,7 +355,7 @@ pub(crate) fn build_accepted_from<T: MotionChecked>(
     let Ok(plain_motion) = plain.interpolator(Method::Disc) else {
         // No interpolation to check counts as folding everywhere: the relaxed mesh is better
         // if it can be set up at all.
-        return match relaxed() {
+        return match relaxed(None) {
             (r, Ok(i)) => accept(&r, Some(&i)).map(|x| (r, x)),
             (_, Err(_)) => accept(&plain, None).map(|x| (plain, x)),
         };
@@ -355,7 +364,7 @@ pub(crate) fn build_accepted_from<T: MotionChecked>(
         Ok(x) => x,
         Err(e) => {
             // Only the relaxed mesh can pass, and only if the count picks it.
-            let (r, Ok(i)) = relaxed() else {
+            let (r, Ok(i)) = relaxed(Some(&plain_motion)) else {
                 return Err(e);
             };
             let x = accept(&r, Some(&i)).map_err(|_| e.clone())?;
@@ -372,7 +381,7 @@ pub(crate) fn build_accepted_from<T: MotionChecked>(
     if folds == 0 {
         return Ok((plain, plain_accepted));
     }
-    match relaxed() {
+    match relaxed(Some(&plain_motion)) {
         (r, Ok(i)) if relaxed_is_picked(&r, &i, folds) => accept(&r, Some(&i)).map(|x| (r, x)),
         _ => Ok((plain, plain_accepted)),
     }

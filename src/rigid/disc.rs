@@ -46,6 +46,7 @@ use super::sincos::sin_cos_many;
 use super::Repair;
 use crate::error::{Error, Result};
 use crate::geometry::{bounding_box, Point};
+use std::sync::Arc;
 
 /// Terms whose rotations are computed together in a frame: small enough for the stack and L1.
 const CHUNK: usize = 64;
@@ -338,8 +339,12 @@ pub(crate) struct DiscRigid {
     ends: Vec<(u32, u32)>,
     /// Consistent rotation angle of each term (§4.1.1).
     alpha: Vec<f64>,
+    /// How many discs hold each term's edge: its weight in the matrix, with `ends` and
+    /// `extra` all the matrix depends on ([`DiscRigid::with_area_rule`] reuses a system).
+    weights: Vec<f64>,
     extra: Vec<ExtraRow>,
-    system: FactoredSystem,
+    /// The factored matrix of eq. (1), shared with the set-ups that reused it.
+    system: Arc<FactoredSystem>,
     centroid_source: Vec<Point>,
     centroid_target: Vec<Point>,
     rotation: Vec<f64>,
@@ -434,7 +439,7 @@ impl DiscRigid {
         target: &[Point],
         discs: &[D],
     ) -> Result<Self> {
-        Self::with_extra_rows(source, target, discs, Vec::new())
+        Self::set_up(source, target, discs, Vec::new(), None)
     }
 
     /// [`DiscRigid::new`] on a triangle mesh (`discs` its one-rings) with the area rule
@@ -442,14 +447,21 @@ impl DiscRigid {
     /// region of them, and of the closed outlines without a mesh whose directed edges are
     /// `cycles` — follows the similarity curve between its end areas instead of swelling or
     /// shrinking where it stretches unevenly.
+    ///
+    /// The matrix of eq. (1) depends on the discs alone, not on the points. So when `like` was
+    /// set up on the same discs (the same edges, each in as many discs), its factored system
+    /// serves this set-up too, the same bits without a second ordering and factorization:
+    /// automatic mode sets up a part's mapped mesh and its relaxed twin, which differ only in
+    /// their points (issue 16). A `like` on other discs is not used.
     pub(crate) fn with_area_rule<D: AsRef<[u32]>>(
         source: &[Point],
         target: &[Point],
         discs: &[D],
         triangles: &[[u32; 3]],
         cycles: &[(u32, u32)],
+        like: Option<&DiscRigid>,
     ) -> Result<Self> {
-        let mut d = Self::new(source, target, discs)?;
+        let mut d = Self::set_up(source, target, discs, Vec::new(), like)?;
         let count = d.system.component_count();
         d.area = Some(AreaRule::new(
             triangles,
@@ -470,29 +482,52 @@ impl DiscRigid {
         discs: &[D],
         extra: Vec<ExtraRow>,
     ) -> Result<Self> {
+        Self::set_up(source, target, discs, extra, None)
+    }
+
+    /// [`DiscRigid::with_extra_rows`], reusing the factored system of `like` when it was set
+    /// up on the same discs and extra rows ([`DiscRigid::with_area_rule`]).
+    fn set_up<D: AsRef<[u32]>>(
+        source: &[Point],
+        target: &[Point],
+        discs: &[D],
+        extra: Vec<ExtraRow>,
+        like: Option<&DiscRigid>,
+    ) -> Result<Self> {
         let local = LocalTransforms::new(source, target, discs)?;
         let n = source.len();
         let alpha = consistent_angles_in_cliques(&local.alpha, || local.rotation_cliques(n));
-        let mut builder = SystemBuilder::new(n);
-        builder.reserve_edges(local.edges.len());
-        for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
-            builder.add_edge(i, j, w);
-        }
-        for (r, row) in extra.iter().enumerate() {
-            let bad = row.coeffs.is_empty()
-                || !(row.weight > 0.0 && row.weight.is_finite())
-                || row
-                    .coeffs
-                    .iter()
-                    .any(|&(v, c)| v as usize >= n || !c.is_finite());
-            if bad {
-                return Err(Error::internal(format!(
-                    "extra row {r} has no coefficients, a bad weight or a bad point index"
-                )));
+        let same_matrix = |d: &&DiscRigid| {
+            d.vertex_count() == n
+                && d.ends == local.edges
+                && d.weights == local.weight
+                && d.extra == extra
+        };
+        let system = match like.filter(same_matrix) {
+            Some(d) => d.system.clone(),
+            None => {
+                let mut builder = SystemBuilder::new(n);
+                builder.reserve_edges(local.edges.len());
+                for (&(i, j), &w) in local.edges.iter().zip(&local.weight) {
+                    builder.add_edge(i, j, w);
+                }
+                for (r, row) in extra.iter().enumerate() {
+                    let bad = row.coeffs.is_empty()
+                        || !(row.weight > 0.0 && row.weight.is_finite())
+                        || row
+                            .coeffs
+                            .iter()
+                            .any(|&(v, c)| v as usize >= n || !c.is_finite());
+                    if bad {
+                        return Err(Error::internal(format!(
+                            "extra row {r} has no coefficients, a bad weight or a bad point index"
+                        )));
+                    }
+                    builder.add_extra_row(&row.coeffs, row.weight);
+                }
+                Arc::new(builder.factor()?)
             }
-            builder.add_extra_row(&row.coeffs, row.weight);
-        }
-        let system = builder.factor()?;
+        };
         let terms = local
             .edges
             .iter()
@@ -511,8 +546,9 @@ impl DiscRigid {
             centroid_source: component_centroids(system.components(), count, source),
             centroid_target: component_centroids(system.components(), count, target),
             terms,
-            ends: local.edges.clone(),
+            ends: local.edges,
             alpha,
+            weights: local.weight,
             extra,
             system,
             rotation,
@@ -605,6 +641,12 @@ impl DiscRigid {
     }
 
     /// Number of points.
+    /// Whether this set-up and `other` share one factored system (a reused one).
+    #[cfg(test)]
+    pub(crate) fn shares_system(&self, other: &DiscRigid) -> bool {
+        Arc::ptr_eq(&self.system, &other.system)
+    }
+
     pub(crate) fn vertex_count(&self) -> usize {
         self.system.vertex_count()
     }

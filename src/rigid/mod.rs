@@ -65,6 +65,11 @@ pub struct DiscSetup<'a> {
     /// curves themselves fold (a marked-up drawing's features bend a little in that frame).
     /// Automatic mode keeps its outlines exact and drops a mesh that folds instead.
     pub repair_curves: bool,
+    /// An interpolator set up on the same triangles and chains, whose factored matrix this
+    /// set-up reuses: eq. (1)'s matrix depends on the discs alone, not on the points, so two
+    /// meshes with one connectivity share it, bit for bit. Ignored when its discs differ.
+    /// Default: none.
+    pub system_of: Option<&'a Interpolator>,
 }
 
 /// Which interpolation to use (CLI: `--method disc|triangle|linear`).
@@ -280,7 +285,11 @@ impl Interpolator {
         let rings: Vec<&[u32]> = (0..n)
             .map(|v| &neighbours[start[v]..start[v + 1]])
             .collect();
-        let mut d = DiscRigid::with_area_rule(source, target, &rings, region, &cycles)?;
+        let like = setup.system_of.and_then(|i| match &i.kind {
+            Kind::Disc(d) => Some(d),
+            _ => None,
+        });
+        let mut d = DiscRigid::with_area_rule(source, target, &rings, region, &cycles, like)?;
         if let Some(together) = setup.together {
             d.group_parts(together);
         }

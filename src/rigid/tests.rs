@@ -209,6 +209,45 @@ fn one_interpolator_read_three_ways_gives_the_frames_of_three() {
     );
 }
 
+#[test]
+fn a_system_reused_on_the_same_triangles_gives_the_bits_of_its_own() {
+    // Automatic mode sets up a mapped mesh and its relaxed twin, which share their triangles:
+    // the second reuses the first's factored matrix and must frame as if it had its own.
+    let (src, tris) = grid(7, 6, 1.0);
+    let (first, second) = (bend(&src, 5.0, 1.1, 0.8), bend(&src, 6.0, -0.7, 2.9));
+    let set_up = |tgt: &[Point], tris: &[[u32; 3]], like: Option<&Interpolator>| {
+        Interpolator::disc(
+            &src,
+            tgt,
+            &DiscSetup {
+                triangles: tris,
+                system_of: like,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let shared_with = |a: &Interpolator, b: &Interpolator| match (&a.kind, &b.kind) {
+        (Kind::Disc(a), Kind::Disc(b)) => a.shares_system(b),
+        _ => false,
+    };
+    let like = set_up(&first, &tris, None);
+    let reused = set_up(&second, &tris, Some(&like));
+    let own = set_up(&second, &tris, None);
+    assert!(shared_with(&reused, &like) && !shared_with(&own, &like));
+    let ts = [0.0, 0.25, 0.6, 0.9, 1.0];
+    let (a, b) = (reused.frames(&ts), own.frames(&ts));
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!(bits(a), bits(b));
+    }
+    // Other triangles (one diagonal flipped) make another matrix: not reused.
+    let mut flipped = tris.clone();
+    let ([a0, a1, a2], [_, _, b2]) = (flipped[0], flipped[1]);
+    (flipped[0], flipped[1]) = ([a0, a1, b2], [a1, a2, b2]);
+    let other = set_up(&second, &flipped, Some(&like));
+    assert!(!shared_with(&other, &like));
+}
+
 /// The bits of every coordinate, for comparisons that must be exact.
 fn bits(f: &[Point]) -> Vec<(u64, u64)> {
     f.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()

@@ -92,6 +92,7 @@ impl SkeletonControl {
             &rings,
             &meshes.triangles,
             &[],
+            None,
         )?;
         let locator = PointLocator::new(&meshes.source, &meshes.triangles)?;
         let joints: Vec<Location> = skeleton.joints.iter().map(|&j| locator.locate(j)).collect();
