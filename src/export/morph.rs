@@ -406,8 +406,8 @@ impl Morph {
         Ok(b)
     }
 
-    /// What the frame at an end draws where the dissolve shows it, when the whole artwork is
-    /// not bound yet ([`WholeArtwork`]): at t = 0 with `v` the source mesh, the source drawing
+    /// What the frame at an end draws where the dissolve shows it, for a morph that binds its
+    /// whole artwork only when drawn ([`WholeArtwork`]): at t = 0 with `v` the source mesh, the source drawing
     /// as binding keeps it ([`crate::artwork::within_reach`]), which [`Binding::place`] gives
     /// there (the target side has opacity 0); at t = 1 the target's likewise. `None`
     /// otherwise, and the frame itself is made. So a view fit binds nothing it does not draw.
