@@ -175,14 +175,26 @@ impl Morph {
         frame: FrameOptions,
     ) -> Result<Self> {
         let artwork = WholeArtwork::bind(source, target, &meshes, frame.flatten_tolerance())?;
-        Ok(Morph {
+        Ok(Morph::with_artwork(meshes, motion.into(), artwork, frame))
+    }
+
+    /// The morph of `meshes` moved by `motion` with the whole artwork `artwork`, no morphing
+    /// paths and no frame hook: what [`Morph::new`] and [`Morph::with_morphing_paths`] start
+    /// from.
+    fn with_artwork(
+        meshes: CompatibleMeshes,
+        motion: Motion,
+        artwork: WholeArtwork,
+        frame: FrameOptions,
+    ) -> Self {
+        Morph {
             meshes,
-            motion: motion.into(),
+            motion,
             artwork,
             frame,
             morphing: None,
             on_frame: None,
-        })
+        }
     }
 
     /// The whole artwork bound to the meshes ([`WholeArtwork`]).
@@ -240,14 +252,8 @@ impl Morph {
         if paths.is_empty() {
             return Morph::new(meshes, motion, source, target, frame);
         }
-        let mut m = Morph {
-            artwork: WholeArtwork::later(source, target, frame.flatten_tolerance()),
-            meshes,
-            motion: motion.into(),
-            frame,
-            morphing: None,
-            on_frame: None,
-        };
+        let artwork = WholeArtwork::later(source, target, frame.flatten_tolerance());
+        let mut m = Morph::with_artwork(meshes, motion.into(), artwork, frame);
         let mut stack = Vec::new();
         // Items some morphing path draws besides its own (shapes riding in another path).
         let covered_source: Vec<usize> = paths.iter().flat_map(|p| p.covers.0.clone()).collect();
